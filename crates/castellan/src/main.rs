@@ -1,1 +1,24 @@
-fn main() {}
+//! `castellan`: the command-line front end. It parses arguments, reads inputs, calls the
+//! library crates and writes outputs atomically; the work itself lives in the libraries.
+
+mod cli;
+mod output;
+mod vsg_cmd;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    let result = match cli.command {
+        cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,53 @@
+//! `castellan vsg run`: read a program, produce the model, write glb / obj+mtl / STATS.json.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow};
+
+use crate::cli::VsgRunArgs;
+use crate::output::Outputs;
+
+pub fn run(args: &VsgRunArgs) -> Result<()> {
+    let file = args.program.display().to_string();
+    let src = std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
+    let options = vsg::RunOptions {
+        seed: args.seed,
+        overrides: args.set.clone(),
+        limits: vsg::Limits { max_depth: args.max_depth, max_shapes: args.max_shapes },
+    };
+    let started = Instant::now();
+    let model = vsg::run(&src, &options).map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
+    let produced = started.elapsed();
+    let export = vsg::export::ExportOptions {
+        tessellation: vsg::shape::Tessellation { segments: args.segments },
+        ..Default::default()
+    };
+    let mut outputs = Outputs::default();
+    let glb = vsg::export::to_glb(&model, &export).with_context(|| format!("cannot export {}", args.output.display()))?;
+    outputs.add(&args.output, glb);
+    if let Some(obj_path) = &args.obj {
+        let mtl_path = obj_path.with_extension("mtl");
+        let mtl_name = mtl_path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let (obj, mtl) = vsg::export::to_obj(&model, &export, &mtl_name)
+            .with_context(|| format!("cannot export {}", obj_path.display()))?;
+        outputs.add(obj_path, obj.into_bytes());
+        outputs.add(&mtl_path, mtl.into_bytes());
+    }
+    let stats = vsg::stats::Stats::of(&model, &export.tessellation);
+    if let Some(stats_path) = &args.stats {
+        outputs.add(stats_path, serde_json::to_vec_pretty(&stats)?);
+    }
+    outputs.commit()?;
+    eprintln!(
+        "{file}: {} terminals ({} visible, {} void), {} non-terminals, volume {:.6}, {} triangles; produced in {:.1} ms, written to {}",
+        stats.terminals,
+        stats.visible_terminals,
+        stats.void_terminals,
+        stats.nonterminals,
+        stats.volume.total,
+        stats.triangles,
+        produced.as_secs_f64() * 1e3,
+        args.output.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,98 @@
+//! `castellan vsg run` as a user runs it: outputs appear on success, a clear message and no
+//! output file on failure.
+
+use std::path::Path;
+
+use assert_cmd::Command;
+
+fn examples() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn castellan() -> Command {
+    Command::cargo_bin("castellan").unwrap()
+}
+
+#[test]
+fn runs_rules_7_3_and_writes_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("out/keep.glb");
+    let obj = dir.path().join("out/keep.obj");
+    let stats = dir.path().join("out/stats.json");
+    castellan()
+        .args(["vsg", "run"])
+        .arg(examples().join("rules_7_3.vsg"))
+        .arg("-o")
+        .arg(&glb)
+        .arg("--obj")
+        .arg(&obj)
+        .arg("--stats")
+        .arg(&stats)
+        .assert()
+        .success();
+    assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
+    assert!(std::fs::read_to_string(&obj).unwrap().contains("mtllib keep.mtl"));
+    assert!(dir.path().join("out/keep.mtl").exists());
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+    for field in ["terminals", "visible_terminals", "void_terminals", "nonterminals", "by_symbol", "volume", "triangles", "visible_volume"] {
+        assert!(s.get(field).is_some(), "STATS.json lacks {field}: {s}");
+    }
+    assert_eq!(s["terminals"], 29);
+    assert!(s["volume"]["by_symbol"]["window"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn same_seed_gives_identical_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("p.vsg");
+    std::fs::write(&src, "Axiom::I(\"box\",{20,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{a}:0.5;\ns::{b}:0.5;\na::{j3d.terminal};\nb::appearance(\"color\",{1,0,0}){j3d.terminal};").unwrap();
+    let out = |name: &str, seed: &str| {
+        let p = dir.path().join(name);
+        castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(&p).args(["--seed", seed]).assert().success();
+        std::fs::read(p).unwrap()
+    };
+    assert_eq!(out("a.glb", "3"), out("b.glb", "3"));
+    assert_ne!(out("a.glb", "3"), out("c.glb", "4"));
+}
+
+#[test]
+fn set_changes_a_declared_float() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("p.vsg");
+    std::fs::write(&src, "float n = 3;\nAxiom::I(\"box\",{n,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{j3d.terminal};").unwrap();
+    let stats = dir.path().join("s.json");
+    castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(dir.path().join("m.glb")).arg("--stats").arg(&stats).args(["--set", "n=5"]).assert().success();
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+    assert_eq!(s["terminals"], 5);
+}
+
+#[test]
+fn syntax_error_exits_non_zero_with_line_column_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("bad.vsg");
+    std::fs::write(&src, "Axiom::I(\"box\",{1,2,3}){a};\na::split(\"X\",{1,,2}){b};\n").unwrap();
+    let glb = dir.path().join("m.glb");
+    let out = castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(&glb).assert().failure();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(stderr.contains("bad.vsg:2:17:"), "{stderr}");
+    assert!(!glb.exists());
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "a temporary file was left behind");
+}
+
+#[test]
+fn missing_program_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = castellan().args(["vsg", "run", "nowhere.vsg", "-o"]).arg(dir.path().join("m.glb")).assert().failure();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(stderr.contains("cannot read nowhere.vsg"), "{stderr}");
+}
+
+#[test]
+fn runaway_grammar_stops_with_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("loop.vsg");
+    std::fs::write(&src, "Axiom::I(\"box\",{1,1,1}){A};\nA::I(\"box\",{1,1,1})I(\"box\",{1,1,1}){A,A};").unwrap();
+    let out = castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(dir.path().join("m.glb")).args(["--max-shapes", "50000"]).assert().failure();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(stderr.contains("production exceeded 50000 shapes"), "{stderr}");
+}

@@ -1,0 +1,63 @@
+//! `STATS.json` of `castellan vsg run` (ARCHITECTURE.md contract): terminal counts by kind and
+//! symbol, exact (analytic) volumes of the terminal primitives, and the triangle count.
+
+use std::collections::{BTreeMap, HashMap};
+
+use serde::Serialize;
+
+use crate::shape::Tessellation;
+use crate::tree::{Model, NodeState};
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Volumes {
+    /// Every terminal, void ones included: a split conserves it.
+    pub total: f64,
+    pub by_symbol: BTreeMap<String, f64>,
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Stats {
+    pub terminals: usize,
+    pub visible_terminals: usize,
+    pub void_terminals: usize,
+    pub nonterminals: usize,
+    /// Terminals per symbol.
+    pub by_symbol: BTreeMap<String, usize>,
+    pub volume: Volumes,
+    /// Volume of the visible terminals alone.
+    pub visible_volume: f64,
+    /// Triangles of the visible terminals' meshes at the given tessellation.
+    pub triangles: usize,
+}
+
+impl Stats {
+    pub fn of(model: &Model, tessellation: &Tessellation) -> Stats {
+        let mut s = Stats::default();
+        let mut triangles_of: HashMap<(crate::shape::ShapeType, Vec<u64>), usize> = HashMap::new();
+        for n in &model.nodes {
+            match n.state {
+                NodeState::NonTerminal => {
+                    s.nonterminals += 1;
+                    continue;
+                }
+                NodeState::Terminal => s.visible_terminals += 1,
+                NodeState::VoidTerminal => s.void_terminals += 1,
+            }
+            s.terminals += 1;
+            let symbol = model.symbol(n);
+            *s.by_symbol.entry(symbol.to_string()).or_default() += 1;
+            let Some(shape) = n.shape else { continue };
+            let v = shape.volume();
+            s.volume.total += v;
+            *s.volume.by_symbol.entry(symbol.to_string()).or_default() += v;
+            if n.state == NodeState::Terminal {
+                s.visible_volume += v;
+                let key = (shape.kind, shape.params().iter().map(|p| p.to_bits()).collect());
+                s.triangles += *triangles_of
+                    .entry(key)
+                    .or_insert_with(|| shape.mesh(tessellation).triangles.len());
+            }
+        }
+        s
+    }
+}

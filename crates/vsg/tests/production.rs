@@ -1,0 +1,118 @@
+//! Production semantics (§7.1.1, §7.1.3): conditions, probabilities with a seed, overrides,
+//! transformations, relative lengths, and the kept semantic tree.
+
+use vsg::shape::Tessellation;
+use vsg::stats::Stats;
+use vsg::tree::NodeState;
+use vsg::RunOptions;
+
+fn stats(src: &str, options: &RunOptions) -> Stats {
+    let m = vsg::run(src, options).unwrap_or_else(|e| panic!("{}", e.render("t.vsg", src)));
+    Stats::of(&m, &Tessellation::default())
+}
+
+const STOCHASTIC: &str = r#"
+Axiom :: I("box", {100, 1, 1}){row};
+row :: repeat("X", {1}){stone};
+stone :: {mossy} : 0.3;
+stone :: {clean} : 0.7;
+mossy :: appearance("color", {0.2, 0.5, 0.2}){j3d.terminal};
+clean :: {j3d.terminal};
+"#;
+
+#[test]
+fn same_seed_same_model_other_seed_other_model() {
+    let a = stats(STOCHASTIC, &RunOptions { seed: 7, ..Default::default() });
+    let b = stats(STOCHASTIC, &RunOptions { seed: 7, ..Default::default() });
+    let c = stats(STOCHASTIC, &RunOptions { seed: 8, ..Default::default() });
+    assert_eq!(a, b);
+    assert_ne!(a.by_symbol, c.by_symbol);
+    let mossy = a.by_symbol["mossy"];
+    assert!((15..=45).contains(&mossy), "{mossy} of 100 with p = 0.3");
+}
+
+#[test]
+fn conditions_read_shape_attributes() {
+    let src = r#"
+Axiom :: I("box", {10, 6, 1}){wall};
+wall :: repeat("Y", {1}){course};
+course : index % 2 == 0 : {even};
+course : index % 2 == 1 && sy > 0.5 : {odd};
+even :: {j3d.terminal};
+odd :: {j3d.terminal};
+"#;
+    let s = stats(src, &RunOptions::default());
+    assert_eq!((s.by_symbol["even"], s.by_symbol["odd"]), (3, 3));
+}
+
+#[test]
+fn set_overrides_a_declared_float() {
+    let src = "float n = 4;\nAxiom :: I(\"box\", {n, 1, 1}){w};\nw :: repeat(\"X\", {1}){s};\ns :: {j3d.terminal};";
+    assert_eq!(stats(src, &RunOptions::default()).terminals, 4);
+    let s = stats(src, &RunOptions { overrides: vec![("n".into(), 9.0)], ..Default::default() });
+    assert_eq!(s.terminals, 9);
+    assert!((s.volume.total - 9.0).abs() < 1e-12);
+}
+
+#[test]
+fn relative_lengths_share_what_is_left() {
+    let src = "Axiom :: I(\"box\", {10, 1, 1}){w};\nw :: split(\"X\", {2, ~1, ~3}){a, b, c};\na :: {j3d.terminal};\nb :: {j3d.terminal};\nc :: {j3d.terminal};";
+    let s = stats(src, &RunOptions::default());
+    assert!((s.volume.by_symbol["b"] - 2.0).abs() < 1e-12);
+    assert!((s.volume.by_symbol["c"] - 6.0).abs() < 1e-12);
+}
+
+#[test]
+fn transforms_compose_down_the_tree() {
+    let src = r#"
+Axiom :: T(10, 0, 0) R(0, 1.5707963267948966, 0) I("box", {4, 1, 2}){w};
+w :: split("X", {1, 3}){a, b};
+a :: {j3d.terminal};
+b :: {j3d.terminal};
+"#;
+    let m = vsg::run(src, &RunOptions::default()).unwrap();
+    let a = m.nodes.iter().find(|n| m.symbol(n) == "a").unwrap();
+    // a's centre is 1.5 along the box's local -x, which the rotation about y turns into +z.
+    let p = a.world.translation.vector;
+    assert!((p.x - 10.0).abs() < 1e-9 && (p.z - 1.5).abs() < 1e-9, "{p}");
+}
+
+#[test]
+fn several_instantiations_bind_successors_in_order() {
+    let src = r#"
+Axiom :: I("box", {1, 1, 1}) T(5, 0, 0) I("sphere", {2}){cube, ball};
+cube :: {j3d.terminal};
+ball :: {j3d.terminal};
+"#;
+    let m = vsg::run(src, &RunOptions::default()).unwrap();
+    let ball = m.nodes.iter().find(|n| m.symbol(n) == "ball").unwrap();
+    assert_eq!(ball.shape.unwrap().kind, vsg::shape::ShapeType::Sphere);
+    assert_eq!(ball.world.translation.x, 5.0);
+}
+
+#[test]
+fn non_terminals_are_kept_with_their_rule_lines() {
+    let src = "Axiom :: I(\"box\", {2, 1, 1}){w};\nw :: split(\"X\", {1, 1}){a, a};\na :: void(){j3d.terminal};";
+    let m = vsg::run(src, &RunOptions::default()).unwrap();
+    let w = &m.nodes[1];
+    assert_eq!((m.symbol(w), w.state, w.rule_line, w.child_count), ("w", NodeState::NonTerminal, 1, 2));
+    let a = &m.nodes[w.first_child as usize];
+    assert_eq!((a.state, a.rule_line, a.depth), (NodeState::VoidTerminal, 2, 2));
+}
+
+#[test]
+fn split_along_every_radial_direction_conserves_volume() {
+    let src = r#"
+Axiom :: I("cylinder", {3, 2}) T(10, 0, 0) I("sphere", {2}) T(20, 0, 0) I("conicFrustum", {3, 2, 1}){c, s, f};
+c :: split("Theta", {~1, ~1, ~1}){p, p, p};
+s :: split("Phi", {~1, ~2}){p, p};
+f :: split("R", {1, 2}){p, p};
+p :: {j3d.terminal};
+"#;
+    let s = stats(src, &RunOptions::default());
+    let whole = std::f64::consts::PI * 9.0 * 2.0
+        + 4.0 / 3.0 * std::f64::consts::PI * 8.0
+        + std::f64::consts::PI * 2.0 / 3.0 * (9.0 + 3.0 + 1.0);
+    assert_eq!(s.terminals, 7);
+    assert!((s.volume.total - whole).abs() < 1e-9 * whole, "{} vs {whole}", s.volume.total);
+}
