@@ -83,7 +83,7 @@ mod tests {
     #[test]
     fn render_names_file_line_and_column_and_shows_excerpt() {
         let src = "Axiom::I(\"box\",{1,2}){a};\nb::{j3d.terminal};";
-        let d = Diagnostic::new("box takes 3 parameters", Span::new(27, 28), "here");
+        let d = Diagnostic::new("box takes 3 parameters", Span::new(26, 27), "here");
         let text = d.render("p.vsg", src);
         assert!(text.starts_with("p.vsg:2:1: box takes 3 parameters"), "{text}");
         assert!(text.contains("b::{j3d.terminal};"), "{text}");

@@ -11,7 +11,7 @@ fn samples() -> Vec<Primitive> {
     vec![
         p(Box, &[4.0, 3.0, 2.0]),
         p(Ramp, &[4.0, 3.0, 2.0]),
-        p(RampFrustum, &[4.0, 3.0, 2.0, 1.5]),
+        p(RampFrustum, &[4.0, 3.0, 2.0, 1.2]),
         p(Parallelepiped, &[4.0, 3.0, 2.0, 0.5, 0.3, -0.4]),
         p(Cylinder, &[2.0, 3.0]),
         p(ExtrudedRing, &[2.0, 3.0, 1.2]),
