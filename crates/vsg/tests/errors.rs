@@ -86,10 +86,21 @@ fn runaway_recursion_stops_at_the_depth_limit() {
 
 #[test]
 fn runaway_growth_stops_at_the_shape_limit() {
-    let src = "Axiom::I(\"box\",{1,1,1}){A};\nA::T(0,0,0)I(\"box\",{1,1,1})I(\"box\",{1,1,1}){A,A};";
+    // A finite but huge tree: ten children per level down to depth 6 is a million shapes.
+    let src = "Axiom::I(\"box\",{1,1,1}){A};\n\
+               A : depth < 6 : I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1})\
+               I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1})I(\"box\",{1,1,1}){A,A,A,A,A,A,A,A,A,A};\n\
+               A : depth >= 6 : {j3d.terminal};";
     let options = RunOptions { limits: Limits { max_depth: 1000, max_shapes: 100_000 }, ..Default::default() };
     let e = error_of(src, &options);
-    assert!(e.contains("production exceeded 100000 shapes"), "{e}");
+    assert!(e.contains("p.vsg:2:1: production exceeded 100000 shapes"), "{e}");
+}
+
+#[test]
+fn runaway_repeat_is_refused_before_it_allocates() {
+    let src = "Axiom::I(\"box\",{1,1,1}){A};\nA::repeat(\"X\",{1e-9}){B};\nB::{j3d.terminal};";
+    let e = error(src);
+    assert!(e.contains("p.vsg:2:4: repeat would create 1000000002 shapes, more than the limit"), "{e}");
 }
 
 #[test]
