@@ -54,7 +54,7 @@ fn symbios_brick_wall(rows: u32, cols: u32) -> usize {
     ] {
         interp.add_statement(parse_statement(line).unwrap()).unwrap();
     }
-    let scope = Scope::new(Vec3::ZERO, Quat::IDENTITY, Vec3::new(cols as f32, rows as f32, 1.0));
+    let scope = Scope::new(Vec3::ZERO, Quat::IDENTITY, Vec3::new(cols as f64, rows as f64, 1.0));
     let model = interp.derive(scope, "Wall").unwrap();
     model.terminals.len()
 }

@@ -1,1 +1,225 @@
-//! placeholder
+//! Exporters of a produced [`Model`]: binary glTF 2.0 (`.glb`) and Wavefront OBJ + MTL.
+//! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
+//! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
+
+mod gltf;
+mod obj;
+mod shading;
+#[cfg(test)]
+mod tests;
+
+use crate::mesh::TriMesh;
+use crate::shape::{Primitive, ShapeType, Tessellation};
+use crate::tree::{Model, NodeId};
+
+/// How a model is exported.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExportOptions {
+    /// How finely curved primitives are meshed.
+    pub tessellation: Tessellation,
+    /// Faces of one mesh meeting at more than this angle (degrees) get separate vertices, so
+    /// boxes look flat and cylinders smooth; normals are averaged across smaller angles.
+    pub crease_angle_deg: f64,
+}
+
+impl Default for ExportOptions {
+    fn default() -> Self {
+        ExportOptions {
+            tessellation: Tessellation::default(),
+            crease_angle_deg: 40.0,
+        }
+    }
+}
+
+/// Why a model could not be exported.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    #[error("node {node} refers to {what} {index}, but the model has only {len}")]
+    BadReference {
+        node: NodeId,
+        what: &'static str,
+        index: u32,
+        len: usize,
+    },
+    #[error("node {node} is not a well-formed tree node: {why}")]
+    BadTree { node: NodeId, why: &'static str },
+    #[error("the {kind} mesh is malformed: {why}")]
+    BadMesh { kind: ShapeType, why: String },
+    #[error("the GLB would be {bytes} bytes, more than the 4 GiB the format allows")]
+    TooLarge { bytes: u64 },
+    #[error("cannot serialize the glTF JSON: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// Writes `model` as a binary glTF 2.0 file: one node per model node (named by its symbol,
+/// with its local transform and shape data in `extras`), meshes on visible terminals only,
+/// shared between terminals with bit-identical primitives and equal appearances.
+pub fn to_glb(model: &Model, options: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+    let mesh = |p: &Primitive| p.mesh(&options.tessellation);
+    let volume = |p: &Primitive| p.volume();
+    gltf::write_glb(
+        model,
+        options,
+        &Geometry {
+            mesh: &mesh,
+            volume: &volume,
+        },
+    )
+}
+
+/// Writes the visible terminals of `model` as OBJ (one group per terminal, world coordinates)
+/// and the materials of their appearances as MTL; the OBJ refers to the MTL as
+/// `mtl_file_name`. Returns `(obj, mtl)`.
+pub fn to_obj(
+    model: &Model,
+    options: &ExportOptions,
+    mtl_file_name: &str,
+) -> Result<(String, String), ExportError> {
+    let mesh = |p: &Primitive| p.mesh(&options.tessellation);
+    let volume = |p: &Primitive| p.volume();
+    obj::write_obj(
+        model,
+        options,
+        mtl_file_name,
+        &Geometry {
+            mesh: &mesh,
+            volume: &volume,
+        },
+    )
+}
+
+/// Meshing and volume of primitives: the public functions pass [`Primitive::mesh`] and
+/// [`Primitive::volume`], tests inject their own.
+pub(crate) struct Geometry<'a> {
+    pub mesh: &'a dyn Fn(&Primitive) -> TriMesh,
+    pub volume: &'a dyn Fn(&Primitive) -> f64,
+}
+
+/// Checks the references the exporters follow: symbols, appearances and a consistent,
+/// acyclic parent/child structure (children come after their parent, in creation order).
+pub(crate) fn check_model(model: &Model) -> Result<(), ExportError> {
+    let len = model.nodes.len();
+    for (i, node) in model.nodes.iter().enumerate() {
+        let id = i as NodeId;
+        if node.symbol as usize >= model.symbols.len() {
+            let len = model.symbols.len();
+            let index = node.symbol;
+            return Err(ExportError::BadReference {
+                node: id,
+                what: "symbol",
+                index,
+                len,
+            });
+        }
+        if node.appearance as usize >= model.appearances.len() {
+            let (index, len) = (node.appearance, model.appearances.len());
+            return Err(ExportError::BadReference {
+                node: id,
+                what: "appearance",
+                index,
+                len,
+            });
+        }
+        let end = node.first_child as u64 + node.child_count as u64;
+        if node.child_count > 0 && (node.first_child <= id || end > len as u64) {
+            return Err(ExportError::BadTree {
+                node: id,
+                why: "children out of range",
+            });
+        }
+        if node
+            .children()
+            .any(|c| model.nodes[c as usize].parent != Some(id))
+        {
+            return Err(ExportError::BadTree {
+                node: id,
+                why: "a child names another parent",
+            });
+        }
+        if let Some(p) = node.parent {
+            let parent = model.nodes.get(p as usize);
+            if p >= id || !parent.is_some_and(|n| n.children().contains(&id)) {
+                return Err(ExportError::BadTree {
+                    node: id,
+                    why: "not a child of its parent",
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Bit pattern of a primitive: terminals with equal keys share one mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct ShapeKey {
+    kind: ShapeType,
+    params: [u64; 6],
+}
+
+impl ShapeKey {
+    pub fn of(p: &Primitive) -> ShapeKey {
+        let mut params = [0; 6];
+        for (slot, v) in params.iter_mut().zip(p.params()) {
+            *slot = v.to_bits();
+        }
+        ShapeKey {
+            kind: p.kind,
+            params,
+        }
+    }
+}
+
+/// Materials of the appearances that visible terminals use; equal appearances share one,
+/// named after the smallest of their indices.
+pub(crate) struct Palette {
+    /// Per model appearance: the smallest index of an equal appearance.
+    canonical: Vec<u32>,
+    /// Material slot per canonical appearance (`u32::MAX` until used).
+    slot_of: Vec<u32>,
+    /// For each material slot, the canonical model appearance index.
+    pub used: Vec<u32>,
+}
+
+#[derive(PartialEq, Eq, Hash)]
+struct AppearanceKey<'a>([u64; 15], Option<&'a str>);
+
+impl Palette {
+    pub fn new(model: &Model) -> Palette {
+        let mut first = std::collections::HashMap::with_capacity(model.appearances.len());
+        let canonical = (0..model.appearances.len() as u32)
+            .map(|i| {
+                let a = &model.appearances[i as usize];
+                let [r, g, b] = a.color;
+                let ([dr, dg, db], [sr, sg, sb]) = (a.diffuse, a.specular);
+                let ([er, eg, eb], (t, am, sh)) =
+                    (a.emissive, (a.transparency, a.ambient, a.shine));
+                let values = [r, g, b, t, am, dr, dg, db, sr, sg, sb, er, eg, eb, sh];
+                let key = AppearanceKey(values.map(f64::to_bits), a.texture.as_deref());
+                *first.entry(key).or_insert(i)
+            })
+            .collect();
+        let slot_of = vec![u32::MAX; model.appearances.len()];
+        Palette {
+            canonical,
+            slot_of,
+            used: Vec::new(),
+        }
+    }
+
+    /// Material slot of model appearance `index` (checked by [`check_model`]); slots are
+    /// numbered in order of first use.
+    pub fn slot(&mut self, index: u32) -> u32 {
+        let canonical = self.canonical[index as usize];
+        let slot = &mut self.slot_of[canonical as usize];
+        if *slot == u32::MAX {
+            *slot = self.used.len() as u32;
+            self.used.push(canonical);
+        }
+        *slot
+    }
+}
+
+/// Clamps to 0..1, mapping NaN to 0.
+pub(crate) fn unit(v: f64) -> f64 {
+    if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) }
+}

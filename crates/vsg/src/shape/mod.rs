@@ -318,9 +318,8 @@ impl Primitive {
         let mut all = [0.0; 6];
         all[..params.len()].copy_from_slice(params);
         let defaults = kind.default_params();
-        for i in params.len()..names.len() {
-            all[i] = defaults[i - required];
-        }
+        all[params.len()..names.len()]
+            .copy_from_slice(&defaults[params.len() - required..names.len() - required]);
         for (i, &v) in all[..names.len()].iter().enumerate() {
             if !v.is_finite() {
                 return Err(ShapeError::BadParam {

@@ -1,0 +1,364 @@
+//! Binary glTF 2.0 export. The glTF node tree is the semantic tree of §7.1.3 (one node per
+//! model node, local transforms, shape data in `extras`); only visible terminals carry meshes
+//! (§7.1.2), shared by all terminals with the same primitive and appearance.
+
+use std::collections::HashMap;
+
+use gltf_json as json;
+use json::validation::{Checked::Valid, USize64};
+use serde::Serialize;
+
+use super::shading::{ShadedMesh, shade};
+use super::{ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, unit};
+use crate::tree::{Appearance, Model, NodeState};
+
+const GLB_MAGIC: u32 = 0x4654_6C67; // "glTF"
+const CHUNK_JSON: u32 = 0x4E4F_534A; // "JSON"
+const CHUNK_BIN: u32 = 0x004E_4942; // "BIN\0"
+
+/// The `extras` of every node.
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct NodeExtras<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shape_type: Option<&'a str>,
+    params: &'a [f64],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    volume: Option<f64>,
+    rule_line: u32,
+    state: NodeState,
+}
+
+#[derive(Serialize)]
+struct MaterialExtras<'a> {
+    texture: &'a str,
+}
+
+/// Accessors of one shaded primitive, shared by all meshes (materials) that draw it.
+#[derive(Clone, Copy)]
+struct Attributes {
+    position: json::Index<json::Accessor>,
+    normal: json::Index<json::Accessor>,
+    indices: json::Index<json::Accessor>,
+}
+
+#[derive(Default)]
+struct Builder {
+    root: json::Root,
+    bin: Vec<u8>,
+    /// Accessors per distinct primitive (`None`: no triangles).
+    attributes: HashMap<ShapeKey, Option<Attributes>>,
+    /// Meshes per distinct primitive and material slot.
+    meshes: HashMap<(ShapeKey, u32), Option<json::Index<json::Mesh>>>,
+}
+
+pub(super) fn write_glb(
+    model: &Model,
+    options: &ExportOptions,
+    geometry: &Geometry,
+) -> Result<Vec<u8>, ExportError> {
+    check_model(model)?;
+    let mut b = Builder::default();
+    b.root.asset = json::Asset {
+        generator: Some(concat!("castellan vsg ", env!("CARGO_PKG_VERSION")).into()),
+        version: "2.0".into(),
+        ..Default::default()
+    };
+    let mut palette = Palette::new(model);
+    b.root.nodes.reserve_exact(model.nodes.len());
+    let mut roots = Vec::new();
+
+    for (i, node) in model.nodes.iter().enumerate() {
+        let mut mesh = None;
+        if let (NodeState::Terminal, Some(p)) = (node.state, &node.shape) {
+            let key = ShapeKey::of(p);
+            let slot = palette.slot(node.appearance);
+            if slot as usize == b.root.materials.len() {
+                let index = palette.used[slot as usize];
+                let m = material(&model.appearances[index as usize], index)?;
+                b.root.materials.push(m);
+            }
+            mesh = match b.meshes.get(&(key, slot)) {
+                Some(&m) => m,
+                None => {
+                    let shade = || shade(p.kind, &(geometry.mesh)(p), options.crease_angle_deg);
+                    b.add_mesh(key, p.kind.name(), slot, shade)?
+                }
+            };
+        }
+        let shape = node.shape.as_ref();
+        let extras = NodeExtras {
+            shape_type: shape.map(|p| p.kind.name()),
+            params: shape.map_or(&[], |p| p.params()),
+            volume: shape.map(|p| (geometry.volume)(p)),
+            rule_line: node.rule_line,
+            state: node.state,
+        };
+        let t = node.local.translation.vector;
+        let q = node.local.rotation.coords; // i, j, k, w
+        let translation = [t.x as f32, t.y as f32, t.z as f32];
+        let mut rotation = [q.x as f32, q.y as f32, q.z as f32, q.w as f32];
+        let norm = rotation.iter().map(|c| c * c).sum::<f32>().sqrt();
+        rotation = rotation.map(|c| c / norm);
+        let identity = rotation == [0.0, 0.0, 0.0, 1.0] || !norm.is_normal();
+        b.root.nodes.push(json::Node {
+            children: (node.child_count > 0)
+                .then(|| node.children().map(json::Index::new).collect()),
+            extras: Some(serde_json::value::to_raw_value(&extras)?),
+            mesh,
+            name: Some(model.symbol(node).to_owned()),
+            rotation: (!identity).then_some(json::scene::UnitQuaternion(rotation)),
+            translation: (translation != [0.0; 3]).then_some(translation),
+            ..Default::default()
+        });
+        if node.parent.is_none() {
+            roots.push(json::Index::new(i as u32));
+        }
+    }
+    let scene = json::Scene {
+        extensions: None,
+        extras: None,
+        name: None,
+        nodes: roots,
+    };
+    b.root.scene = Some(b.root.push(scene));
+    b.finish()
+}
+
+/// A metallic-roughness material for appearance `index`.
+fn material(a: &Appearance, index: u32) -> Result<json::Material, ExportError> {
+    let [r, g, b] = a.color.map(|c| unit(c) as f32);
+    let alpha = unit(1.0 - a.transparency) as f32;
+    let texture = a
+        .texture
+        .as_deref()
+        .map(|texture| MaterialExtras { texture });
+    Ok(json::Material {
+        alpha_mode: Valid(if alpha < 1.0 {
+            json::material::AlphaMode::Blend
+        } else {
+            json::material::AlphaMode::Opaque
+        }),
+        name: Some(format!("appearance_{index}")),
+        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+            base_color_factor: json::material::PbrBaseColorFactor([r, g, b, alpha]),
+            metallic_factor: json::material::StrengthFactor(0.0),
+            roughness_factor: json::material::StrengthFactor(unit(1.0 - a.shine) as f32),
+            ..Default::default()
+        },
+        emissive_factor: json::material::EmissiveFactor(a.emissive.map(|c| unit(c) as f32)),
+        extras: texture
+            .map(|t| serde_json::value::to_raw_value(&t))
+            .transpose()?,
+        ..Default::default()
+    })
+}
+
+impl Builder {
+    /// Pads the binary chunk to 4 bytes and returns the offset of what comes next.
+    fn align(&mut self) -> usize {
+        self.bin.resize(self.bin.len().next_multiple_of(4), 0);
+        self.bin.len()
+    }
+
+    fn view(
+        &mut self,
+        start: usize,
+        stride: Option<usize>,
+        target: json::buffer::Target,
+    ) -> json::Index<json::buffer::View> {
+        let view = json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: USize64(self.bin.len() as u64 - start as u64),
+            byte_offset: Some(USize64(start as u64)),
+            byte_stride: stride.map(json::buffer::Stride),
+            name: None,
+            target: Some(Valid(target)),
+            extensions: None,
+            extras: None,
+        };
+        self.root.push(view)
+    }
+
+    fn accessor(
+        &mut self,
+        view: json::Index<json::buffer::View>,
+        offset: u64,
+        count: usize,
+        component: json::accessor::ComponentType,
+        type_: json::accessor::Type,
+        bounds: Option<([f32; 3], [f32; 3])>,
+    ) -> json::Index<json::Accessor> {
+        let (min, max) = match bounds {
+            Some((lo, hi)) => (Some(lo.to_vec().into()), Some(hi.to_vec().into())),
+            None => (None, None),
+        };
+        self.root.push(json::Accessor {
+            buffer_view: Some(view),
+            byte_offset: (offset > 0).then_some(USize64(offset)),
+            count: USize64(count as u64),
+            component_type: Valid(json::accessor::GenericComponentType(component)),
+            extensions: None,
+            extras: None,
+            type_: Valid(type_),
+            min,
+            max,
+            name: None,
+            normalized: false,
+            sparse: None,
+        })
+    }
+
+    /// Writes interleaved positions and normals (f32, stride 24) and indices (u16 when they
+    /// fit, else u32); `None` for a mesh without triangles.
+    fn add_attributes(&mut self, name: &str, mesh: &ShadedMesh) -> Option<Attributes> {
+        use json::accessor::{ComponentType, Type};
+        if mesh.triangles.is_empty() {
+            return None;
+        }
+        let start = self.align();
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        self.bin
+            .reserve(mesh.positions.len() * 24 + mesh.triangles.len() * 12 + 4);
+        for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
+            let p = p.map(|c| c as f32);
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+            // Renormalise in f32 so the validator's unit-length check holds exactly enough.
+            let n = n.map(|c| c as f32);
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            for c in p.into_iter().chain(n.map(|c| c / len)) {
+                self.bin.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        let vertices = self.view(start, Some(24), json::buffer::Target::ArrayBuffer);
+        let count = mesh.positions.len();
+        let position = self.accessor(
+            vertices,
+            0,
+            count,
+            ComponentType::F32,
+            Type::Vec3,
+            Some((lo, hi)),
+        );
+        let normal = self.accessor(vertices, 12, count, ComponentType::F32, Type::Vec3, None);
+
+        let start = self.align();
+        // u16 indices must stay below 65535 (the primitive-restart value).
+        let component = if count < 0xFFFF {
+            for &i in mesh.triangles.iter().flatten() {
+                self.bin.extend_from_slice(&(i as u16).to_le_bytes());
+            }
+            ComponentType::U16
+        } else {
+            for &i in mesh.triangles.iter().flatten() {
+                self.bin.extend_from_slice(&i.to_le_bytes());
+            }
+            ComponentType::U32
+        };
+        let view = self.view(start, None, json::buffer::Target::ElementArrayBuffer);
+        let indices = self.accessor(
+            view,
+            0,
+            mesh.triangles.len() * 3,
+            component,
+            Type::Scalar,
+            None,
+        );
+        let views = self.root.buffer_views.len();
+        self.root.buffer_views[views - 2].name = Some(format!("{name}_vertices"));
+        self.root.buffer_views[views - 1].name = Some(format!("{name}_indices"));
+        Some(Attributes {
+            position,
+            normal,
+            indices,
+        })
+    }
+
+    /// Adds the mesh of primitive `key` drawn with material `material`, shading the primitive
+    /// (`shade`) only if no other material has drawn it yet; `None` when it has no triangles.
+    fn add_mesh(
+        &mut self,
+        key: ShapeKey,
+        name: &str,
+        material: u32,
+        shade: impl FnOnce() -> Result<ShadedMesh, ExportError>,
+    ) -> Result<Option<json::Index<json::Mesh>>, ExportError> {
+        let attributes = match self.attributes.get(&key) {
+            Some(&a) => a,
+            None => {
+                let view_name = format!("{name}_{}", self.attributes.len());
+                let a = self.add_attributes(&view_name, &shade()?);
+                self.attributes.insert(key, a);
+                a
+            }
+        };
+        let Some(a) = attributes else {
+            self.meshes.insert((key, material), None);
+            return Ok(None);
+        };
+        let attributes = [
+            (Valid(json::mesh::Semantic::Positions), a.position),
+            (Valid(json::mesh::Semantic::Normals), a.normal),
+        ];
+        let primitive = json::mesh::Primitive {
+            attributes: attributes.into_iter().collect(),
+            extensions: None,
+            extras: None,
+            indices: Some(a.indices),
+            material: Some(json::Index::new(material)),
+            mode: Valid(json::mesh::Mode::Triangles),
+            targets: None,
+        };
+        let mesh = self.root.push(json::Mesh {
+            extensions: None,
+            extras: None,
+            name: Some(format!("{name}_{}", self.root.meshes.len())),
+            primitives: vec![primitive],
+            weights: None,
+        });
+        self.meshes.insert((key, material), Some(mesh));
+        Ok(Some(mesh))
+    }
+
+    /// Serialises the JSON and wraps it and the binary data in a GLB container.
+    fn finish(mut self) -> Result<Vec<u8>, ExportError> {
+        self.align();
+        if !self.bin.is_empty() {
+            self.root.buffers.push(json::Buffer {
+                byte_length: USize64(self.bin.len() as u64),
+                name: None,
+                uri: None,
+                extensions: None,
+                extras: None,
+            });
+        }
+        let mut text = self.root.to_vec()?;
+        text.resize(text.len().next_multiple_of(4), b' ');
+        let bin_chunk = if self.bin.is_empty() {
+            0
+        } else {
+            8 + self.bin.len()
+        };
+        let total = 12 + 8 + text.len() + bin_chunk;
+        if total > u32::MAX as usize {
+            return Err(ExportError::TooLarge {
+                bytes: total as u64,
+            });
+        }
+        let mut out = Vec::with_capacity(total);
+        for word in [GLB_MAGIC, 2, total as u32, text.len() as u32, CHUNK_JSON] {
+            out.extend_from_slice(&word.to_le_bytes());
+        }
+        out.extend_from_slice(&text);
+        if !self.bin.is_empty() {
+            out.extend_from_slice(&(self.bin.len() as u32).to_le_bytes());
+            out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+            out.extend_from_slice(&self.bin);
+        }
+        Ok(out)
+    }
+}

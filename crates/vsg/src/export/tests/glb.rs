@@ -1,0 +1,296 @@
+//! GLB tests: container layout, the node tree of §7.1.3, shared terminal meshes (§7.1.2),
+//! materials, vertex data and speed.
+
+use std::cell::Cell;
+use std::time::Instant;
+
+use serde_json::Value;
+
+use super::*;
+
+fn word(bytes: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap())
+}
+
+/// Checks the GLB container and returns its JSON and BIN chunk.
+fn parse_glb(bytes: &[u8]) -> (Value, &[u8]) {
+    assert_eq!(&bytes[0..4], b"glTF");
+    assert_eq!(word(bytes, 4), 2);
+    assert_eq!(word(bytes, 8) as usize, bytes.len());
+    assert_eq!(bytes.len() % 4, 0);
+    let json_len = word(bytes, 12) as usize;
+    assert_eq!(json_len % 4, 0);
+    assert_eq!(&bytes[16..20], b"JSON");
+    let json = serde_json::from_slice(&bytes[20..20 + json_len]).expect("JSON chunk parses");
+    let rest = &bytes[20 + json_len..];
+    if rest.is_empty() {
+        return (json, rest);
+    }
+    let bin_len = word(rest, 0) as usize;
+    assert_eq!(bin_len % 4, 0);
+    assert_eq!(&rest[4..8], b"BIN\0");
+    assert_eq!(rest.len(), 8 + bin_len);
+    (json, &rest[8..])
+}
+
+/// Reads accessor `index` as rows of f32 (or integer indices converted to f32).
+fn read_accessor(json: &Value, bin: &[u8], index: u64) -> Vec<Vec<f64>> {
+    let acc = &json["accessors"][index as usize];
+    let view = &json["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
+    let width = match acc["type"].as_str().unwrap() {
+        "VEC3" => 3,
+        "SCALAR" => 1,
+        other => panic!("unexpected type {other}"),
+    };
+    let size = match acc["componentType"].as_u64().unwrap() {
+        5123 => 2,
+        5125 | 5126 => 4,
+        other => panic!("unexpected component type {other}"),
+    };
+    let stride = view["byteStride"]
+        .as_u64()
+        .map_or(width * size, |s| s as usize);
+    let base = view["byteOffset"].as_u64().unwrap_or(0) + acc["byteOffset"].as_u64().unwrap_or(0);
+    assert_eq!(base as usize % size, 0, "accessor is aligned");
+    let count = acc["count"].as_u64().unwrap() as usize;
+    assert!(base as usize + stride * (count - 1) + width * size <= bin.len());
+    (0..count)
+        .map(|i| {
+            (0..width)
+                .map(|k| {
+                    let at = base as usize + i * stride + k * size;
+                    match acc["componentType"].as_u64().unwrap() {
+                        5123 => u16::from_le_bytes([bin[at], bin[at + 1]]) as f64,
+                        5125 => word(bin, at) as f64,
+                        _ => f32::from_le_bytes(bin[at..at + 4].try_into().unwrap()) as f64,
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn glb_header_and_chunks_are_aligned() {
+    let bytes = glb_with(&castle(), &box_mesh);
+    let (json, bin) = parse_glb(&bytes);
+    assert_eq!(json["asset"]["version"], "2.0");
+    assert_eq!(
+        json["buffers"][0]["byteLength"].as_u64().unwrap() as usize,
+        bin.len()
+    );
+    for view in json["bufferViews"].as_array().unwrap() {
+        assert_eq!(view["byteOffset"].as_u64().unwrap() % 4, 0);
+    }
+}
+
+#[test]
+fn glb_nodes_mirror_the_model_tree() {
+    let model = castle();
+    let (json, _) = parse_glb(&glb_with(&model, &box_mesh));
+    let nodes = json["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), model.nodes.len());
+    assert_eq!(json["scenes"][0]["nodes"], serde_json::json!([0]));
+    assert_eq!(json["scene"], 0);
+    assert_eq!(nodes[0]["children"], serde_json::json!([1, 2, 3, 4]));
+    assert_eq!(nodes[1]["children"], serde_json::json!([5, 6, 7, 8]));
+    assert!(nodes[2].get("children").is_none());
+    for (node, gl) in model.nodes.iter().zip(nodes) {
+        assert_eq!(gl["name"], model.symbol(node));
+    }
+    // Local transforms, not world ones: bricks are placed relative to the wall.
+    assert_eq!(
+        nodes[5]["translation"],
+        serde_json::json!([-1.0, -1.0, 0.0])
+    );
+    let q: Vec<f64> = serde_json::from_value(nodes[3]["rotation"].clone()).unwrap();
+    let half = 0.785f64 / 2.0;
+    assert!(
+        (q[1] - half.sin()).abs() < 1e-6 && (q[3] - half.cos()).abs() < 1e-6,
+        "{q:?}"
+    );
+    assert!(nodes[0].get("rotation").is_none() && nodes[0].get("translation").is_none());
+}
+
+#[test]
+fn identical_terminals_share_one_mesh() {
+    let calls = Cell::new(0);
+    let counting = |p: &Primitive| {
+        calls.set(calls.get() + 1);
+        box_mesh(p)
+    };
+    let (json, _) = parse_glb(&glb_with(&castle(), &counting));
+    let nodes = json["nodes"].as_array().unwrap();
+    let bricks: Vec<&Value> = (5..=8).map(|i| &nodes[i]["mesh"]).collect();
+    assert!(
+        bricks.iter().all(|m| *m == bricks[0] && m.is_u64()),
+        "{bricks:?}"
+    );
+    // Bricks, tower, gate: the tower and gate share geometry but not material.
+    assert_eq!(json["meshes"].as_array().unwrap().len(), 3);
+    assert_ne!(nodes[3]["mesh"], nodes[4]["mesh"]);
+    assert_eq!(calls.get(), 2, "each distinct primitive is meshed once");
+    assert_eq!(json["accessors"].as_array().unwrap().len(), 6);
+    assert_eq!(json["materials"].as_array().unwrap().len(), 2);
+}
+
+#[test]
+fn void_and_non_terminals_have_no_mesh() {
+    let (json, _) = parse_glb(&glb_with(&castle(), &box_mesh));
+    let nodes = json["nodes"].as_array().unwrap();
+    for (i, node) in nodes.iter().enumerate() {
+        assert_eq!(
+            node.get("mesh").is_some(),
+            i >= 3,
+            "node {i}: only terminals 3..=8 have one"
+        );
+    }
+}
+
+#[test]
+fn node_extras_carry_shape_volume_rule_and_state() {
+    let (json, _) = parse_glb(&glb_with(&castle(), &box_mesh));
+    let nodes = &json["nodes"];
+    let extras = &nodes[2]["extras"];
+    assert_eq!(extras["shapeType"], "box");
+    assert_eq!(extras["params"], serde_json::json!([1.0, 1.0, 1.0]));
+    assert_eq!(extras["volume"], 1.0);
+    assert_eq!(extras["ruleLine"], 11);
+    assert_eq!(extras["state"], "void_terminal");
+    assert_eq!(nodes[0]["extras"]["state"], "non_terminal");
+    assert_eq!(nodes[0]["extras"]["volume"], 240.0);
+    assert_eq!(nodes[5]["extras"]["state"], "terminal");
+}
+
+#[test]
+fn materials_follow_appearances() {
+    let (json, _) = parse_glb(&glb_with(&castle(), &box_mesh));
+    let mats = json["materials"].as_array().unwrap();
+    let glass = mats
+        .iter()
+        .find(|m| m["name"] == "appearance_1")
+        .expect("tower material");
+    let pbr = &glass["pbrMetallicRoughness"];
+    let color: Vec<f64> = serde_json::from_value(pbr["baseColorFactor"].clone()).unwrap();
+    let expected = [0.9, 0.1, 0.1, 0.75];
+    assert!(
+        color
+            .iter()
+            .zip(expected)
+            .all(|(a, b)| (a - b).abs() < 1e-6),
+        "{color:?}"
+    );
+    assert_eq!(glass["alphaMode"], "BLEND");
+    assert_eq!(pbr["metallicFactor"], 0.0);
+    assert!((pbr["roughnessFactor"].as_f64().unwrap() - 0.3).abs() < 1e-6);
+    assert_eq!(glass["emissiveFactor"], serde_json::json!([0.0, 0.5, 0.0]));
+    assert_eq!(glass["extras"]["texture"], "bricks.png");
+    let plain = mats
+        .iter()
+        .find(|m| m["name"] == "appearance_0")
+        .expect("default material");
+    assert!(plain.get("alphaMode").is_none_or(|m| m == "OPAQUE"));
+    assert!(plain.get("extras").is_none());
+}
+
+#[test]
+fn vertex_data_has_bounds_unit_normals_and_valid_indices() {
+    let bytes = glb_with(&castle(), &box_mesh);
+    let (json, bin) = parse_glb(&bytes);
+    for mesh in json["meshes"].as_array().unwrap() {
+        let prim = &mesh["primitives"][0];
+        let pos_id = prim["attributes"]["POSITION"].as_u64().unwrap();
+        let positions = read_accessor(&json, bin, pos_id);
+        let normals = read_accessor(&json, bin, prim["attributes"]["NORMAL"].as_u64().unwrap());
+        let indices = read_accessor(&json, bin, prim["indices"].as_u64().unwrap());
+        assert_eq!(positions.len(), 24, "flat box: 4 vertices per face");
+        assert_eq!(indices.len(), 36);
+        assert!(indices.iter().all(|i| (i[0] as usize) < positions.len()));
+        for n in &normals {
+            let len = n.iter().map(|c| c * c).sum::<f64>().sqrt();
+            assert!((len - 1.0).abs() < 1e-6 && n.iter().filter(|c| c.abs() > 0.5).count() == 1);
+        }
+        let acc = &json["accessors"][pos_id as usize];
+        for k in 0..3 {
+            let lo = positions.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+            let hi = positions
+                .iter()
+                .map(|p| p[k])
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert_eq!(acc["min"][k].as_f64().unwrap(), lo);
+            assert_eq!(acc["max"][k].as_f64().unwrap(), hi);
+        }
+    }
+}
+
+#[test]
+fn empty_and_void_only_models_give_valid_files() {
+    let bytes = glb_with(&Model::default(), &box_mesh);
+    let (json, bin) = parse_glb(&bytes);
+    assert!(bin.is_empty() && json.get("buffers").is_none() && json.get("nodes").is_none());
+    let mut t = Tree::new("Ruin", Some(boxed([2.0; 3])));
+    let hole = boxed([1.0; 3]);
+    t.children(
+        0,
+        &[("Hole", NodeState::VoidTerminal, hole, at(0.0, 0.0, 0.0), 0)],
+    );
+    let bytes = glb_with(&t.0, &box_mesh);
+    let (json, bin) = parse_glb(&bytes);
+    assert!(bin.is_empty() && json.get("meshes").is_none());
+    assert_eq!(json["nodes"].as_array().unwrap().len(), 2);
+}
+
+#[test]
+fn a_hundred_thousand_bricks_export_quickly() {
+    let brick = boxed([0.2, 0.1, 0.1]);
+    let mut t = Tree::new("Wall", Some(boxed([100.0, 100.0, 0.1])));
+    let kids: Vec<_> = (0..100_000)
+        .map(|i| {
+            let local = at((i % 500) as f64 * 0.2, (i / 500) as f64 * 0.1, 0.0);
+            ("Brick", NodeState::Terminal, brick, local, (i % 2) as u32)
+        })
+        .collect();
+    t.0.appearances.push(Appearance {
+        color: [0.5, 0.2, 0.1],
+        ..Appearance::default()
+    });
+    t.children(0, &kids);
+    let start = Instant::now();
+    let bytes = glb_with(&t.0, &box_mesh);
+    let elapsed = start.elapsed();
+    let (json, _) = parse_glb(&bytes);
+    assert_eq!(json["nodes"].as_array().unwrap().len(), 100_001);
+    assert_eq!(json["meshes"].as_array().unwrap().len(), 2);
+    if !cfg!(debug_assertions) {
+        assert!(elapsed.as_secs_f64() < 1.0, "took {elapsed:?}");
+    }
+}
+
+#[test]
+fn large_meshes_switch_to_u32_indices() {
+    let row = |p: &Primitive| {
+        let mut m = TriMesh::default();
+        for i in 0..3000 {
+            let mut b = box_mesh(p);
+            b.positions.iter_mut().for_each(|v| v[0] += 2.0 * i as f64);
+            m.append(&b);
+        }
+        m
+    };
+    let bytes = glb_with(&Tree::new("Row", Some(boxed([1.0; 3]))).0, &row);
+    let (json, bin) = parse_glb(&bytes);
+    let prim = &json["meshes"][0]["primitives"][0];
+    let indices_id = prim["indices"].as_u64().unwrap();
+    assert_eq!(
+        json["accessors"][indices_id as usize]["componentType"],
+        5125
+    );
+    let positions = read_accessor(&json, bin, prim["attributes"]["POSITION"].as_u64().unwrap());
+    assert_eq!(positions.len(), 3000 * 24);
+    let indices = read_accessor(&json, bin, indices_id);
+    assert!(indices.iter().all(|i| (i[0] as usize) < positions.len()));
+    assert_eq!(
+        indices.iter().map(|i| i[0] as usize).max(),
+        Some(positions.len() - 1)
+    );
+}
