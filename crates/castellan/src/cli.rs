@@ -6,7 +6,11 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 #[derive(Debug, Parser)]
-#[command(name = "castellan", version, about = "Plan drawing + façade photos of a historic building -> a labelled, volumetric 3D model")]
+#[command(
+    name = "castellan",
+    version,
+    about = "Plan drawing + façade photos of a historic building -> a labelled, volumetric 3D model"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -56,12 +60,17 @@ pub struct VsgRunArgs {
 }
 
 fn parse_assignment(s: &str) -> Result<(String, f64), String> {
-    let (name, value) = s.split_once('=').ok_or_else(|| format!("expected NAME=VALUE, found '{s}'"))?;
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("expected NAME=VALUE, found '{s}'"))?;
     let name = name.trim();
     if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
         return Err(format!("'{name}' is not a variable name"));
     }
-    let v: f64 = value.trim().parse().map_err(|_| format!("'{value}' is not a number"))?;
+    let v: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{value}' is not a number"))?;
     if !v.is_finite() {
         return Err(format!("'{value}' is not a finite number"));
     }
@@ -88,12 +97,18 @@ mod tests {
 
     #[test]
     fn obj_flag() {
-        assert_eq!(run_args(&["--obj", "m.obj"]).unwrap().obj, Some(PathBuf::from("m.obj")));
+        assert_eq!(
+            run_args(&["--obj", "m.obj"]).unwrap().obj,
+            Some(PathBuf::from("m.obj"))
+        );
     }
 
     #[test]
     fn stats_flag() {
-        assert_eq!(run_args(&["--stats", "s.json"]).unwrap().stats, Some(PathBuf::from("s.json")));
+        assert_eq!(
+            run_args(&["--stats", "s.json"]).unwrap().stats,
+            Some(PathBuf::from("s.json"))
+        );
     }
 
     #[test]

@@ -25,14 +25,25 @@ impl Outputs {
                 Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
                 _ => PathBuf::from("."),
             };
-            std::fs::create_dir_all(&dir).with_context(|| format!("cannot create folder {}", dir.display()))?;
+            std::fs::create_dir_all(&dir)
+                .with_context(|| format!("cannot create folder {}", dir.display()))?;
             let mut tmp = tempfile::NamedTempFile::new_in(&dir)
                 .with_context(|| format!("cannot write in {}", dir.display()))?;
-            tmp.write_all(bytes).with_context(|| format!("cannot write {}", path.display()))?;
+            tmp.write_all(bytes)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            // Temporary files are private (0600); outputs are ordinary files others may read.
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                tmp.as_file()
+                    .set_permissions(std::fs::Permissions::from_mode(0o644))
+                    .with_context(|| format!("cannot write {}", path.display()))?;
+            }
             staged.push((tmp, path));
         }
         for (tmp, path) in staged {
-            tmp.persist(path).with_context(|| format!("cannot write {}", path.display()))?;
+            tmp.persist(path)
+                .with_context(|| format!("cannot write {}", path.display()))?;
         }
         Ok(())
     }
@@ -51,5 +62,14 @@ mod tests {
         out.commit().unwrap();
         assert_eq!(std::fs::read(dir.path().join("a/b.txt")).unwrap(), b"hello");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(dir.path().join("c.txt"))
+                .unwrap()
+                .permissions()
+                .mode();
+            assert_eq!(mode & 0o777, 0o644);
+        }
     }
 }

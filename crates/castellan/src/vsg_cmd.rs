@@ -9,25 +9,36 @@ use crate::output::Outputs;
 
 pub fn run(args: &VsgRunArgs) -> Result<()> {
     let file = args.program.display().to_string();
-    let src = std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
+    let src =
+        std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
     let options = vsg::RunOptions {
         seed: args.seed,
         overrides: args.set.clone(),
-        limits: vsg::Limits { max_depth: args.max_depth, max_shapes: args.max_shapes },
+        limits: vsg::Limits {
+            max_depth: args.max_depth,
+            max_shapes: args.max_shapes,
+        },
     };
     let started = Instant::now();
-    let model = vsg::run(&src, &options).map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
+    let model =
+        vsg::run(&src, &options).map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
     let produced = started.elapsed();
     let export = vsg::export::ExportOptions {
-        tessellation: vsg::shape::Tessellation { segments: args.segments },
+        tessellation: vsg::shape::Tessellation {
+            segments: args.segments,
+        },
         ..Default::default()
     };
     let mut outputs = Outputs::default();
-    let glb = vsg::export::to_glb(&model, &export).with_context(|| format!("cannot export {}", args.output.display()))?;
+    let glb = vsg::export::to_glb(&model, &export)
+        .with_context(|| format!("cannot export {}", args.output.display()))?;
     outputs.add(&args.output, glb);
     if let Some(obj_path) = &args.obj {
         let mtl_path = obj_path.with_extension("mtl");
-        let mtl_name = mtl_path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let mtl_name = mtl_path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let (obj, mtl) = vsg::export::to_obj(&model, &export, &mtl_name)
             .with_context(|| format!("cannot export {}", obj_path.display()))?;
         outputs.add(obj_path, obj.into_bytes());

@@ -31,10 +31,23 @@ fn runs_rules_7_3_and_writes_every_output() {
         .assert()
         .success();
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
-    assert!(std::fs::read_to_string(&obj).unwrap().contains("mtllib keep.mtl"));
+    assert!(
+        std::fs::read_to_string(&obj)
+            .unwrap()
+            .contains("mtllib keep.mtl")
+    );
     assert!(dir.path().join("out/keep.mtl").exists());
     let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
-    for field in ["terminals", "visible_terminals", "void_terminals", "nonterminals", "by_symbol", "volume", "triangles", "visible_volume"] {
+    for field in [
+        "terminals",
+        "visible_terminals",
+        "void_terminals",
+        "nonterminals",
+        "by_symbol",
+        "volume",
+        "triangles",
+        "visible_volume",
+    ] {
         assert!(s.get(field).is_some(), "STATS.json lacks {field}: {s}");
     }
     assert_eq!(s["terminals"], 29);
@@ -48,7 +61,14 @@ fn same_seed_gives_identical_files() {
     std::fs::write(&src, "Axiom::I(\"box\",{20,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{a}:0.5;\ns::{b}:0.5;\na::{j3d.terminal};\nb::appearance(\"color\",{1,0,0}){j3d.terminal};").unwrap();
     let out = |name: &str, seed: &str| {
         let p = dir.path().join(name);
-        castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(&p).args(["--seed", seed]).assert().success();
+        castellan()
+            .args(["vsg", "run"])
+            .arg(&src)
+            .arg("-o")
+            .arg(&p)
+            .args(["--seed", seed])
+            .assert()
+            .success();
         std::fs::read(p).unwrap()
     };
     assert_eq!(out("a.glb", "3"), out("b.glb", "3"));
@@ -59,9 +79,22 @@ fn same_seed_gives_identical_files() {
 fn set_changes_a_declared_float() {
     let dir = tempfile::tempdir().unwrap();
     let src = dir.path().join("p.vsg");
-    std::fs::write(&src, "float n = 3;\nAxiom::I(\"box\",{n,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{j3d.terminal};").unwrap();
+    std::fs::write(
+        &src,
+        "float n = 3;\nAxiom::I(\"box\",{n,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{j3d.terminal};",
+    )
+    .unwrap();
     let stats = dir.path().join("s.json");
-    castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(dir.path().join("m.glb")).arg("--stats").arg(&stats).args(["--set", "n=5"]).assert().success();
+    castellan()
+        .args(["vsg", "run"])
+        .arg(&src)
+        .arg("-o")
+        .arg(dir.path().join("m.glb"))
+        .arg("--stats")
+        .arg(&stats)
+        .args(["--set", "n=5"])
+        .assert()
+        .success();
     let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
     assert_eq!(s["terminals"], 5);
 }
@@ -70,29 +103,89 @@ fn set_changes_a_declared_float() {
 fn syntax_error_exits_non_zero_with_line_column_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let src = dir.path().join("bad.vsg");
-    std::fs::write(&src, "Axiom::I(\"box\",{1,2,3}){a};\na::split(\"X\",{1,,2}){b};\n").unwrap();
+    std::fs::write(
+        &src,
+        "Axiom::I(\"box\",{1,2,3}){a};\na::split(\"X\",{1,,2}){b};\n",
+    )
+    .unwrap();
     let glb = dir.path().join("m.glb");
-    let out = castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(&glb).assert().failure();
+    let out = castellan()
+        .args(["vsg", "run"])
+        .arg(&src)
+        .arg("-o")
+        .arg(&glb)
+        .assert()
+        .failure();
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(stderr.contains("bad.vsg:2:17:"), "{stderr}");
     assert!(!glb.exists());
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "a temporary file was left behind");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "a temporary file was left behind"
+    );
 }
 
 #[test]
 fn missing_program_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
-    let out = castellan().args(["vsg", "run", "nowhere.vsg", "-o"]).arg(dir.path().join("m.glb")).assert().failure();
+    let out = castellan()
+        .args(["vsg", "run", "nowhere.vsg", "-o"])
+        .arg(dir.path().join("m.glb"))
+        .assert()
+        .failure();
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(stderr.contains("cannot read nowhere.vsg"), "{stderr}");
 }
 
 #[test]
-fn runaway_grammar_stops_with_an_error() {
+fn runaway_grammar_stops_at_max_depth() {
     let dir = tempfile::tempdir().unwrap();
     let src = dir.path().join("loop.vsg");
-    std::fs::write(&src, "Axiom::I(\"box\",{1,1,1}){A};\nA::I(\"box\",{1,1,1})I(\"box\",{1,1,1}){A,A};").unwrap();
-    let out = castellan().args(["vsg", "run"]).arg(&src).arg("-o").arg(dir.path().join("m.glb")).args(["--max-shapes", "50000"]).assert().failure();
+    std::fs::write(
+        &src,
+        "Axiom::I(\"box\",{1,1,1}){A};\nA::repeat(\"X\",{1}){A};",
+    )
+    .unwrap();
+    let glb = dir.path().join("m.glb");
+    let out = castellan()
+        .args(["vsg", "run"])
+        .arg(&src)
+        .arg("-o")
+        .arg(&glb)
+        .args(["--max-depth", "20"])
+        .assert()
+        .failure();
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(stderr.contains("production exceeded 50000 shapes"), "{stderr}");
+    assert!(
+        stderr.contains("loop.vsg:2:1: production went deeper than 20 levels"),
+        "{stderr}"
+    );
+    assert!(!glb.exists());
+}
+
+#[test]
+fn runaway_repeat_stops_at_max_shapes() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("many.vsg");
+    std::fs::write(
+        &src,
+        "Axiom::I(\"box\",{1,1,1}){A};\nA::repeat(\"X\",{0.0001}){B};\nB::{j3d.terminal};",
+    )
+    .unwrap();
+    let out = castellan()
+        .args(["vsg", "run"])
+        .arg(&src)
+        .arg("-o")
+        .arg(dir.path().join("m.glb"))
+        .args(["--max-shapes", "5000"])
+        .assert()
+        .failure();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains(
+            "many.vsg:2:4: repeat would create 10002 shapes, more than the limit of 4998"
+        ),
+        "{stderr}"
+    );
 }

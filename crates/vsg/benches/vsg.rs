@@ -20,7 +20,13 @@ fn brick_wall(rows: u32, cols: u32) -> String {
 }
 
 fn options() -> RunOptions {
-    RunOptions { limits: vsg::Limits { max_depth: 100, max_shapes: 3_000_000 }, ..Default::default() }
+    RunOptions {
+        limits: vsg::Limits {
+            max_depth: 100,
+            max_shapes: 3_000_000,
+        },
+        ..Default::default()
+    }
 }
 
 fn production(c: &mut Criterion) {
@@ -52,9 +58,15 @@ fn symbios_brick_wall(rows: u32, cols: u32) -> usize {
         "Row --> Repeat(X, 1) { Brick }",
         "Brick --> I(\"brick\")",
     ] {
-        interp.add_statement(parse_statement(line).unwrap()).unwrap();
+        interp
+            .add_statement(parse_statement(line).unwrap())
+            .unwrap();
     }
-    let scope = Scope::new(Vec3::ZERO, Quat::IDENTITY, Vec3::new(cols as f64, rows as f64, 1.0));
+    let scope = Scope::new(
+        Vec3::ZERO,
+        Quat::IDENTITY,
+        Vec3::new(cols as f64, rows as f64, 1.0),
+    );
     let model = interp.derive(scope, "Wall").unwrap();
     model.terminals.len()
 }

@@ -85,11 +85,18 @@ pub enum OpKind {
     /// `R(rx, ry, rz)`, radians
     Rotate([Expr; 3]),
     /// `I("type", {params})`
-    Instantiate { shape_type: StrLit, params: Vec<Expr> },
+    Instantiate {
+        shape_type: StrLit,
+        params: Vec<Expr>,
+    },
     /// `split(dir, {lengths})`
     Split { axis: AxisArg, lengths: Vec<Length> },
     /// `repeat(dir, {lengths}, offset)`; offset defaults to 0
-    Repeat { axis: AxisArg, lengths: Vec<Length>, offset: Option<Expr> },
+    Repeat {
+        axis: AxisArg,
+        lengths: Vec<Length>,
+        offset: Option<Expr>,
+    },
     /// `appearance("attr", value, "attr", value, ...)`
     Appearance(Vec<(StrLit, AppearanceValue)>),
     /// `void()`
@@ -158,10 +165,27 @@ pub enum Expr {
     Number(f64, Span),
     Bool(bool, Span),
     Var(Ident),
-    Index { array: Ident, index: Box<Expr>, span: Span },
-    Unary { op: UnaryOp, operand: Box<Expr>, span: Span },
-    Binary { op: BinaryOp, lhs: Box<Expr>, rhs: Box<Expr>, span: Span },
-    Call { function: Ident, args: Vec<Expr>, span: Span },
+    Index {
+        array: Ident,
+        index: Box<Expr>,
+        span: Span,
+    },
+    Unary {
+        op: UnaryOp,
+        operand: Box<Expr>,
+        span: Span,
+    },
+    Binary {
+        op: BinaryOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+        span: Span,
+    },
+    Call {
+        function: Ident,
+        args: Vec<Expr>,
+        span: Span,
+    },
 }
 
 impl Expr {

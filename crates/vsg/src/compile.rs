@@ -94,7 +94,9 @@ pub fn compile<'p>(
     for r in &rules {
         for (s, ast) in r.successors.iter().zip(&r.ast.successors) {
             if let (Succ::Symbol(id), Successor::Symbol(ident)) = (s, ast)
-                && rules_by_symbol.get(*id as usize).is_none_or(|v| v.is_empty())
+                && rules_by_symbol
+                    .get(*id as usize)
+                    .is_none_or(|v| v.is_empty())
             {
                 errors.push(Diagnostic::new(
                     format!(
@@ -112,7 +114,13 @@ pub fn compile<'p>(
         errors.sort_by_key(|d| d.span.start);
         return Err(CompileError::Program(errors));
     }
-    Ok(Compiled { vars, symbols: symbols.names, rules, rules_by_symbol, axiom })
+    Ok(Compiled {
+        vars,
+        symbols: symbols.names,
+        rules,
+        rules_by_symbol,
+        axiom,
+    })
 }
 
 #[derive(Default)]
@@ -160,10 +168,18 @@ fn declarations(
             vars.insert(decl.name.name.clone(), Value::Scalar(*v));
             continue;
         }
-        let mut scope = Scope { vars: &vars, shape: None, rng };
+        let mut scope = Scope {
+            vars: &vars,
+            shape: None,
+            rng,
+        };
         let value = match &decl.value {
             DeclValue::Scalar(e) => scope.eval(e).map(Value::Scalar),
-            DeclValue::Array(es) => es.iter().map(|e| scope.eval(e)).collect::<Result<_, _>>().map(Value::Array),
+            DeclValue::Array(es) => es
+                .iter()
+                .map(|e| scope.eval(e))
+                .collect::<Result<_, _>>()
+                .map(Value::Array),
         };
         match value {
             Ok(v) => {
@@ -178,24 +194,38 @@ fn declarations(
                 .items
                 .iter()
                 .filter_map(|i| match i {
-                    Item::Decl(d) if matches!(d.value, DeclValue::Scalar(_)) => Some(d.name.name.as_str()),
+                    Item::Decl(d) if matches!(d.value, DeclValue::Scalar(_)) => {
+                        Some(d.name.name.as_str())
+                    }
                     _ => None,
                 })
                 .collect();
             return Err(CompileError::Override(format!(
                 "--set {name}: the program declares no float '{name}' (it declares: {})",
-                if declared.is_empty() { "none".to_string() } else { declared.join(", ") }
+                if declared.is_empty() {
+                    "none".to_string()
+                } else {
+                    declared.join(", ")
+                }
             )));
         }
     }
-    if errors.is_empty() { Ok(vars) } else { Err(CompileError::Program(errors)) }
+    if errors.is_empty() {
+        Ok(vars)
+    } else {
+        Err(CompileError::Program(errors))
+    }
 }
 
 fn line_of(src: &str, span: Span) -> u32 {
     crate::diag::line_col(src, span.start).0 as u32
 }
 
-fn check_rule<'p>(rule: &'p Rule, src: &str, symbols: &mut Symbols) -> Result<CompiledRule<'p>, Diagnostic> {
+fn check_rule<'p>(
+    rule: &'p Rule,
+    src: &str,
+    symbols: &mut Symbols,
+) -> Result<CompiledRule<'p>, Diagnostic> {
     let successors: Vec<Succ> = rule
         .successors
         .iter()
@@ -212,14 +242,22 @@ fn check_rule<'p>(rule: &'p Rule, src: &str, symbols: &mut Symbols) -> Result<Co
                 let kind = ShapeType::parse(&shape_type.value).ok_or_else(|| {
                     let names: Vec<&str> = ShapeType::ALL.iter().map(|t| t.name()).collect();
                     Diagnostic::new(
-                        format!("unknown shape type \"{}\"; the types are {}", shape_type.value, names.join(", ")),
+                        format!(
+                            "unknown shape type \"{}\"; the types are {}",
+                            shape_type.value,
+                            names.join(", ")
+                        ),
                         shape_type.span,
                         "unknown shape type",
                     )
                 })?;
                 let (lo, hi) = (kind.required_params(), kind.param_names().len());
                 if params.len() < lo || params.len() > hi {
-                    let expected = if lo == hi { lo.to_string() } else { format!("{lo} to {hi}") };
+                    let expected = if lo == hi {
+                        lo.to_string()
+                    } else {
+                        format!("{lo} to {hi}")
+                    };
                     return Err(Diagnostic::new(
                         format!(
                             "{kind} takes {expected} parameters ({}), found {}",
@@ -242,7 +280,10 @@ fn check_rule<'p>(rule: &'p Rule, src: &str, symbols: &mut Symbols) -> Result<Co
                 }
                 let a = Axis::parse(&axis.name).ok_or_else(|| {
                     Diagnostic::new(
-                        format!("unknown split direction \"{}\"; directions are X, Y, Z, R, Theta, Phi", axis.name),
+                        format!(
+                            "unknown split direction \"{}\"; directions are X, Y, Z, R, Theta, Phi",
+                            axis.name
+                        ),
                         axis.span,
                         "unknown direction",
                     )
@@ -266,21 +307,35 @@ fn check_rule<'p>(rule: &'p Rule, src: &str, symbols: &mut Symbols) -> Result<Co
     };
     let wanted = match (geometry, divide) {
         (Geometry::Instantiate(n), _) => Some((n, "instantiations")),
-        (Geometry::Divide { .. }, Some((_, _, n, op))) => {
-            Some((n, if matches!(op.kind, OpKind::Split { .. }) { "split lengths" } else { "repeat lengths" }))
-        }
+        (Geometry::Divide { .. }, Some((_, _, n, op))) => Some((
+            n,
+            if matches!(op.kind, OpKind::Split { .. }) {
+                "split lengths"
+            } else {
+                "repeat lengths"
+            },
+        )),
         _ => None,
     };
     if let Some((n, what)) = wanted
         && n != successors.len()
     {
         return Err(Diagnostic::new(
-            format!("the rule has {n} {what} but {} successors; they are bound in order, one each", successors.len()),
+            format!(
+                "the rule has {n} {what} but {} successors; they are bound in order, one each",
+                successors.len()
+            ),
             successor_span(rule),
             format!("{} successors", successors.len()),
         ));
     }
-    Ok(CompiledRule { ast: rule, line: line_of(src, rule.span), successors, geometry, types })
+    Ok(CompiledRule {
+        ast: rule,
+        line: line_of(src, rule.span),
+        successors,
+        geometry,
+        types,
+    })
 }
 
 fn successor_span(rule: &Rule) -> Span {

@@ -14,7 +14,11 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     pub fn new(message: impl Into<String>, span: Span, label: impl Into<String>) -> Diagnostic {
-        Diagnostic { message: message.into(), span, label: label.into() }
+        Diagnostic {
+            message: message.into(),
+            span,
+            label: label.into(),
+        }
     }
 
     /// 1-based `(line, column)` of the span start; columns count characters.
@@ -65,7 +69,9 @@ fn floor_boundary(src: &str, mut at: usize) -> usize {
 }
 
 fn char_index(src: &str, byte: usize) -> usize {
-    src[..floor_boundary(src, byte.min(src.len()))].chars().count()
+    src[..floor_boundary(src, byte.min(src.len()))]
+        .chars()
+        .count()
 }
 
 #[cfg(test)]
@@ -85,7 +91,10 @@ mod tests {
         let src = "Axiom::I(\"box\",{1,2}){a};\nb::{j3d.terminal};";
         let d = Diagnostic::new("box takes 3 parameters", Span::new(26, 27), "here");
         let text = d.render("p.vsg", src);
-        assert!(text.starts_with("p.vsg:2:1: box takes 3 parameters"), "{text}");
+        assert!(
+            text.starts_with("p.vsg:2:1: box takes 3 parameters"),
+            "{text}"
+        );
         assert!(text.contains("b::{j3d.terminal};"), "{text}");
     }
 }

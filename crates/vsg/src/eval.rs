@@ -147,7 +147,11 @@ impl Scope<'_> {
                     BinaryOp::And | BinaryOp::Or => truth(b != 0.0),
                 }
             }
-            Expr::Call { function, args, span } => self.call(function, args, *span)?,
+            Expr::Call {
+                function,
+                args,
+                span,
+            } => self.call(function, args, *span)?,
         })
     }
 
@@ -156,7 +160,12 @@ impl Scope<'_> {
             Some(Value::Scalar(v)) => return Ok(*v),
             Some(Value::Array(values)) => {
                 return Err(Diagnostic::new(
-                    format!("'{}' is an array of {}; index it, e.g. {}[0]", id.name, values.len(), id.name),
+                    format!(
+                        "'{}' is an array of {}; index it, e.g. {}[0]",
+                        id.name,
+                        values.len(),
+                        id.name
+                    ),
                     id.span,
                     "array used as a number",
                 ));
@@ -172,14 +181,19 @@ impl Scope<'_> {
         }
     }
 
-    fn call(&mut self, function: &Ident, args: &[Expr], span: crate::ast::Span) -> Result<f64, Diagnostic> {
+    fn call(
+        &mut self,
+        function: &Ident,
+        args: &[Expr],
+        span: crate::ast::Span,
+    ) -> Result<f64, Diagnostic> {
         let name = function.name.as_str();
         let arity = match name {
             "atan2" | "pow" | "rand" => 2..=2,
             "clamp" => 3..=3,
             "min" | "max" => 1..=usize::MAX,
-            "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sqrt" | "abs" | "floor" | "ceil"
-            | "round" | "exp" | "ln" | "log10" | "rad" | "deg" => 1..=1,
+            "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sqrt" | "abs" | "floor"
+            | "ceil" | "round" | "exp" | "ln" | "log10" | "rad" | "deg" => 1..=1,
             _ => {
                 return Err(Diagnostic::new(
                     format!("unknown function '{name}'; functions are {FUNCTIONS}"),
@@ -228,7 +242,11 @@ impl Scope<'_> {
             "max" => x.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             "rand" => {
                 let (lo, hi) = (x[0].min(x[1]), x[0].max(x[1]));
-                if lo == hi { lo } else { self.rng.random_range(lo..hi) }
+                if lo == hi {
+                    lo
+                } else {
+                    self.rng.random_range(lo..hi)
+                }
             }
             _ => unreachable!("arity table and dispatch list the same functions"),
         })
@@ -259,37 +277,64 @@ mod tests {
     }
 
     fn var(name: &str, at: usize) -> Expr {
-        Expr::Var(Ident { name: name.into(), span: Span::new(at, at + name.len()) })
+        Expr::Var(Ident {
+            name: name.into(),
+            span: Span::new(at, at + name.len()),
+        })
     }
 
     fn bin(op: BinaryOp, a: Expr, b: Expr) -> Expr {
-        Expr::Binary { op, lhs: Box::new(a), rhs: Box::new(b), span: Span::default() }
+        Expr::Binary {
+            op,
+            lhs: Box::new(a),
+            rhs: Box::new(b),
+            span: Span::default(),
+        }
     }
 
     fn with_scope<T>(f: impl FnOnce(&mut Scope) -> T) -> T {
         let mut vars = HashMap::new();
         vars.insert("w".to_string(), Value::Scalar(4.0));
         vars.insert("a".to_string(), Value::Array(vec![1.0, 2.0, 3.0]));
-        let attrs = ShapeAttrs { size: [5.0, 10.0, 3.0], depth: 2, ..Default::default() };
+        let attrs = ShapeAttrs {
+            size: [5.0, 10.0, 3.0],
+            depth: 2,
+            ..Default::default()
+        };
         let mut rng = ChaCha8Rng::seed_from_u64(1);
-        f(&mut Scope { vars: &vars, shape: Some(&attrs), rng: &mut rng })
+        f(&mut Scope {
+            vars: &vars,
+            shape: Some(&attrs),
+            rng: &mut rng,
+        })
     }
 
     #[test]
     fn arithmetic_variables_and_attributes() {
-        let e = bin(BinaryOp::Mul, var("w", 0), bin(BinaryOp::Sub, var("sy", 0), num(1.0)));
+        let e = bin(
+            BinaryOp::Mul,
+            var("w", 0),
+            bin(BinaryOp::Sub, var("sy", 0), num(1.0)),
+        );
         assert_eq!(with_scope(|s| s.eval(&e)).unwrap(), 36.0);
     }
 
     #[test]
     fn index_out_of_range_names_the_array() {
         let e = Expr::Index {
-            array: Ident { name: "a".into(), span: Span::new(0, 1) },
+            array: Ident {
+                name: "a".into(),
+                span: Span::new(0, 1),
+            },
             index: Box::new(num(3.0)),
             span: Span::new(0, 4),
         };
         let err = with_scope(|s| s.eval(&e)).unwrap_err();
-        assert!(err.message.contains("out of range for 'a'"), "{}", err.message);
+        assert!(
+            err.message.contains("out of range for 'a'"),
+            "{}",
+            err.message
+        );
     }
 
     #[test]
@@ -307,18 +352,28 @@ mod tests {
 
     #[test]
     fn and_short_circuits() {
-        let e = bin(BinaryOp::And, num(0.0), bin(BinaryOp::Div, num(1.0), num(0.0)));
+        let e = bin(
+            BinaryOp::And,
+            num(0.0),
+            bin(BinaryOp::Div, num(1.0), num(0.0)),
+        );
         assert_eq!(with_scope(|s| s.eval(&e)).unwrap(), 0.0);
     }
 
     #[test]
     fn functions_and_arity() {
         let call = |name: &str, args: Vec<Expr>| Expr::Call {
-            function: Ident { name: name.into(), span: Span::default() },
+            function: Ident {
+                name: name.into(),
+                span: Span::default(),
+            },
             args,
             span: Span::default(),
         };
-        assert_eq!(with_scope(|s| s.eval(&call("max", vec![num(1.0), num(7.0), num(3.0)]))).unwrap(), 7.0);
+        assert_eq!(
+            with_scope(|s| s.eval(&call("max", vec![num(1.0), num(7.0), num(3.0)]))).unwrap(),
+            7.0
+        );
         assert!(with_scope(|s| s.eval(&call("sqrt", vec![]))).is_err());
         assert!(with_scope(|s| s.eval(&call("sqrt", vec![num(-1.0)]))).is_err());
         let r = with_scope(|s| s.eval(&call("rand", vec![num(2.0), num(3.0)]))).unwrap();

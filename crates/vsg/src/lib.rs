@@ -58,7 +58,11 @@ pub struct RunOptions {
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { seed: DEFAULT_SEED, overrides: Vec::new(), limits: Limits::default() }
+        RunOptions {
+            seed: DEFAULT_SEED,
+            overrides: Vec::new(),
+            limits: Limits::default(),
+        }
     }
 }
 
@@ -75,7 +79,11 @@ impl Error {
     /// All messages, each as `file:line:col: message` with an excerpt.
     pub fn render(&self, file: &str, src: &str) -> String {
         match self {
-            Error::Program(ds) => ds.iter().map(|d| d.render(file, src)).collect::<Vec<_>>().join("\n"),
+            Error::Program(ds) => ds
+                .iter()
+                .map(|d| d.render(file, src))
+                .collect::<Vec<_>>()
+                .join("\n"),
             Error::Override(m) => format!("{file}: {m}\n"),
         }
     }
@@ -85,9 +93,10 @@ impl Error {
 pub fn run(src: &str, options: &RunOptions) -> Result<Model, Error> {
     let program = parse::parse(src).map_err(Error::Program)?;
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-    let compiled = compile::compile(&program, src, &options.overrides, &mut rng).map_err(|e| match e {
-        compile::CompileError::Program(ds) => Error::Program(ds),
-        compile::CompileError::Override(m) => Error::Override(m),
-    })?;
+    let compiled =
+        compile::compile(&program, src, &options.overrides, &mut rng).map_err(|e| match e {
+            compile::CompileError::Program(ds) => Error::Program(ds),
+            compile::CompileError::Override(m) => Error::Override(m),
+        })?;
     produce::produce(&compiled, options.limits, rng).map_err(|d| Error::Program(vec![d]))
 }

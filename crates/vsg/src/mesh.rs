@@ -35,8 +35,12 @@ impl TriMesh {
     pub fn append(&mut self, other: &TriMesh) {
         let base = self.positions.len() as u32;
         self.positions.extend_from_slice(&other.positions);
-        self.triangles
-            .extend(other.triangles.iter().map(|t| [t[0] + base, t[1] + base, t[2] + base]));
+        self.triangles.extend(
+            other
+                .triangles
+                .iter()
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
     }
 
     /// Signed volume enclosed by the mesh (divergence theorem); exact for a closed mesh.
@@ -69,7 +73,8 @@ impl TriMesh {
     /// is closed, 2-manifold at its edges, and consistently oriented. Triangles with a repeated
     /// vertex index count as defects.
     pub fn is_closed_oriented(&self) -> bool {
-        let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(self.triangles.len() * 3);
+        let mut directed: HashMap<(u32, u32), u32> =
+            HashMap::with_capacity(self.triangles.len() * 3);
         for t in &self.triangles {
             if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
                 return false;
@@ -113,7 +118,12 @@ mod tests {
 
     fn unit_tetrahedron() -> TriMesh {
         let mut m = TriMesh::default();
-        for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+        for p in [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ] {
             m.push_vertex(p);
         }
         m.triangles = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];

@@ -15,7 +15,9 @@ pub enum Len {
 
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PartitionError {
-    #[error("absolute lengths add up to {absolute}, more than the extent {extent}, leaving nothing for the ~ lengths")]
+    #[error(
+        "absolute lengths add up to {absolute}, more than the extent {extent}, leaving nothing for the ~ lengths"
+    )]
     NoRoomForRelative { absolute: f64, extent: f64 },
     #[error("length #{index} is {value}; lengths must be positive")]
     NonPositive { index: usize, value: f64 },
@@ -51,7 +53,10 @@ pub fn resolve_split(extent: f64, lengths: &[Len]) -> Result<Vec<f64>, Partition
         .map(|l| if let Len::Relative(w) = l { *w } else { 0.0 })
         .sum();
     if weights == 0.0 {
-        return Ok(lengths.iter().map(|l| if let Len::Absolute(v) = l { *v } else { 0.0 }).collect());
+        return Ok(lengths
+            .iter()
+            .map(|l| if let Len::Absolute(v) = l { *v } else { 0.0 })
+            .collect());
     }
     let free = extent - absolute;
     if free <= SLIVER_FRACTION * extent {
@@ -82,19 +87,28 @@ pub fn repeat(
     }
     let sliver = SLIVER_FRACTION * extent;
     let span = extent - offset;
-    let nominal: f64 = pattern.iter().map(|l| match *l {
-        Len::Absolute(v) | Len::Relative(v) => v,
-    }).sum();
+    let nominal: f64 = pattern
+        .iter()
+        .map(|l| match *l {
+            Len::Absolute(v) | Len::Relative(v) => v,
+        })
+        .sum();
     let lengths: Vec<f64> = if pattern.iter().any(|l| matches!(l, Len::Relative(_))) {
         let cycles = (span / nominal).round().max(1.0);
         resolve_split(span / cycles, pattern)?
     } else {
-        pattern.iter().map(|l| if let Len::Absolute(v) = l { *v } else { 0.0 }).collect()
+        pattern
+            .iter()
+            .map(|l| if let Len::Absolute(v) = l { *v } else { 0.0 })
+            .collect()
     };
     let cycle: f64 = lengths.iter().sum();
     let estimate = span / cycle * lengths.len() as f64 + 2.0;
     if estimate > max_pieces as f64 {
-        return Err(PartitionError::TooManyPieces { pieces: estimate.ceil(), limit: max_pieces });
+        return Err(PartitionError::TooManyPieces {
+            pieces: estimate.ceil(),
+            limit: max_pieces,
+        });
     }
     let mut out = Vec::with_capacity(estimate as usize);
     if offset > sliver {

@@ -27,7 +27,10 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Self {
-        Limits { max_depth: 100, max_shapes: 5_000_000 }
+        Limits {
+            max_depth: 100,
+            max_shapes: 5_000_000,
+        }
     }
 }
 
@@ -47,7 +50,10 @@ pub fn produce(program: &Compiled, limits: Limits, rng: ChaCha8Rng) -> Result<Mo
         program,
         limits,
         rng,
-        model: Model { symbols: program.symbols.clone(), ..Model::default() },
+        model: Model {
+            symbols: program.symbols.clone(),
+            ..Model::default()
+        },
         void: vec![false],
         appearance_ids: HashMap::new(),
     };
@@ -88,7 +94,9 @@ struct Output {
 impl Producer<'_, '_> {
     fn attrs(&self, id: NodeId) -> ShapeAttrs {
         let n = &self.model.nodes[id as usize];
-        let siblings = n.parent.map_or(1, |p| self.model.nodes[p as usize].child_count);
+        let siblings = n
+            .parent
+            .map_or(1, |p| self.model.nodes[p as usize].child_count);
         let t = n.world.translation.vector;
         ShapeAttrs {
             size: n.shape.map_or([0.0; 3], |s| s.size()),
@@ -110,7 +118,11 @@ impl Producer<'_, '_> {
         let mut applicable = Vec::with_capacity(candidates.len());
         for &r in candidates {
             let rule = &program.rules[r];
-            let mut scope = Scope { vars: &program.vars, shape: Some(attrs), rng: &mut self.rng };
+            let mut scope = Scope {
+                vars: &program.vars,
+                shape: Some(attrs),
+                rng: &mut self.rng,
+            };
             let holds = match &rule.ast.condition {
                 Some(c) => scope.truth(c)?,
                 None => true,
@@ -167,11 +179,16 @@ impl Producer<'_, '_> {
     fn expand(&mut self, id: NodeId) -> Result<std::ops::Range<NodeId>, Diagnostic> {
         let needs_attrs = {
             let symbol = self.model.nodes[id as usize].symbol as usize;
-            self.program.rules_by_symbol[symbol]
-                .iter()
-                .any(|&r| !self.program.rules[r].ast.ops.is_empty() || self.program.rules[r].ast.condition.is_some())
+            self.program.rules_by_symbol[symbol].iter().any(|&r| {
+                !self.program.rules[r].ast.ops.is_empty()
+                    || self.program.rules[r].ast.condition.is_some()
+            })
         };
-        let attrs = if needs_attrs { self.attrs(id) } else { ShapeAttrs::default() };
+        let attrs = if needs_attrs {
+            self.attrs(id)
+        } else {
+            ShapeAttrs::default()
+        };
         let program = self.program;
         let rule = &program.rules[self.choose_rule(id, &attrs)?];
         let (outputs, appearance, void) = self.apply(id, rule, &attrs)?;
@@ -192,7 +209,11 @@ impl Producer<'_, '_> {
                 n.world *= only.local;
             }
             n.appearance = appearance;
-            n.state = if void { NodeState::VoidTerminal } else { NodeState::Terminal };
+            n.state = if void {
+                NodeState::VoidTerminal
+            } else {
+                NodeState::Terminal
+            };
             return Ok(0..0);
         }
         let first = self.model.nodes.len() as NodeId;
@@ -202,8 +223,7 @@ impl Producer<'_, '_> {
             return Err(Diagnostic::new(
                 format!(
                     "production went deeper than {} levels at '{}': the grammar seems to recurse without end (raise the limit with --max-depth if it is meant)",
-                    self.limits.max_depth,
-                    self.model.symbols[parent.symbol as usize]
+                    self.limits.max_depth, self.model.symbols[parent.symbol as usize]
                 ),
                 rule.ast.span,
                 "this rule keeps producing",
@@ -263,18 +283,30 @@ impl Producer<'_, '_> {
         let mut void = false;
         let mut type_index = 0;
         for op in &rule.ast.ops {
-            let mut scope = Scope { vars, shape: Some(attrs), rng: &mut self.rng };
+            let mut scope = Scope {
+                vars,
+                shape: Some(attrs),
+                rng: &mut self.rng,
+            };
             match &op.kind {
                 OpKind::Translate(e) => {
-                    translation += Vector3::new(scope.eval(&e[0])?, scope.eval(&e[1])?, scope.eval(&e[2])?);
+                    translation +=
+                        Vector3::new(scope.eval(&e[0])?, scope.eval(&e[1])?, scope.eval(&e[2])?);
                 }
                 OpKind::Rotate(e) => {
-                    let r = Rotation3::from_euler_angles(scope.eval(&e[0])?, scope.eval(&e[1])?, scope.eval(&e[2])?);
+                    let r = Rotation3::from_euler_angles(
+                        scope.eval(&e[0])?,
+                        scope.eval(&e[1])?,
+                        scope.eval(&e[2])?,
+                    );
                     rotation = UnitQuaternion::from_rotation_matrix(&r) * rotation;
                 }
                 OpKind::Instantiate { params, .. } => {
                     let kind = rule.types[type_index];
-                    let values = params.iter().map(|e| scope.eval(e)).collect::<Result<Vec<_>, _>>()?;
+                    let values = params
+                        .iter()
+                        .map(|e| scope.eval(e))
+                        .collect::<Result<Vec<_>, _>>()?;
                     let primitive = Primitive::new(kind, &values)
                         .map_err(|e| Diagnostic::new(e.to_string(), op.span, "invalid shape"))?;
                     // T() and R() before an I() place that shape: centre at T, orientation R.
@@ -293,37 +325,58 @@ impl Producer<'_, '_> {
                     };
                     let Some(prim) = shape else {
                         return Err(Diagnostic::new(
-                            format!("'{}' has no shape to divide; instantiate one with I() first", self.model.symbols[self.model.nodes[id as usize].symbol as usize]),
+                            format!(
+                                "'{}' has no shape to divide; instantiate one with I() first",
+                                self.model.symbols[self.model.nodes[id as usize].symbol as usize]
+                            ),
                             op.span,
                             "nothing to split",
                         ));
                     };
-                    let lens = lengths.iter().map(|l| eval_len(&mut scope, l)).collect::<Result<Vec<_>, _>>()?;
-                    let shape_err = |e: ShapeError| Diagnostic::new(e.to_string(), op.span, "this split");
+                    let lens = lengths
+                        .iter()
+                        .map(|l| eval_len(&mut scope, l))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    let shape_err =
+                        |e: ShapeError| Diagnostic::new(e.to_string(), op.span, "this split");
                     let extent = prim.extent(axis).map_err(shape_err)?;
-                    let part_err = |e: partition::PartitionError| Diagnostic::new(e.to_string(), op.span, "this split");
+                    let part_err = |e: partition::PartitionError| {
+                        Diagnostic::new(e.to_string(), op.span, "this split")
+                    };
                     let (pieces_len, symbols): (Vec<f64>, Vec<usize>) = match &op.kind {
                         OpKind::Repeat { offset, .. } => {
                             let offset = match offset {
                                 Some(e) => scope.eval(e)?,
                                 None => 0.0,
                             };
-                            let budget = self.limits.max_shapes.saturating_sub(self.model.nodes.len());
-                            partition::repeat(extent, &lens, offset, budget).map_err(part_err)?.into_iter().unzip()
+                            let budget = self
+                                .limits
+                                .max_shapes
+                                .saturating_sub(self.model.nodes.len());
+                            partition::repeat(extent, &lens, offset, budget)
+                                .map_err(part_err)?
+                                .into_iter()
+                                .unzip()
                         }
-                        _ => (partition::resolve_split(extent, &lens).map_err(part_err)?, (0..lens.len()).collect()),
+                        _ => (
+                            partition::resolve_split(extent, &lens).map_err(part_err)?,
+                            (0..lens.len()).collect(),
+                        ),
                     };
                     let pieces = prim.split(axis, &pieces_len).map_err(shape_err)?;
                     let pending = Isometry3::from_parts(Translation3::from(translation), rotation);
-                    outputs.extend(pieces.into_iter().zip(symbols).map(|(piece, successor)| Output {
-                        shape: Some(piece.primitive),
-                        local: pending * piece.transform,
-                        successor,
+                    outputs.extend(pieces.into_iter().zip(symbols).map(|(piece, successor)| {
+                        Output {
+                            shape: Some(piece.primitive),
+                            local: pending * piece.transform,
+                            successor,
+                        }
                     }));
                 }
                 OpKind::Appearance(attrs_list) => {
                     let base = appearance.take().unwrap_or_else(|| {
-                        self.model.appearances[self.model.nodes[id as usize].appearance as usize].clone()
+                        self.model.appearances[self.model.nodes[id as usize].appearance as usize]
+                            .clone()
                     });
                     appearance = Some(set_appearance(base, attrs_list, &mut scope)?);
                 }
@@ -334,7 +387,13 @@ impl Producer<'_, '_> {
             // No I, split or repeat: every successor gets the predecessor's shape, moved by any
             // T() and R() of the rule.
             let local = Isometry3::from_parts(Translation3::from(translation), rotation);
-            outputs = (0..rule.successors.len()).map(|successor| Output { shape, local, successor }).collect();
+            outputs = (0..rule.successors.len())
+                .map(|successor| Output {
+                    shape,
+                    local,
+                    successor,
+                })
+                .collect();
         }
         Ok((outputs, appearance, void))
     }
@@ -363,10 +422,15 @@ impl Producer<'_, '_> {
 
 fn eval_len(scope: &mut Scope, l: &Length) -> Result<Len, Diagnostic> {
     let v = scope.eval(&l.expr)?;
-    Ok(if l.relative { Len::Relative(v) } else { Len::Absolute(v) })
+    Ok(if l.relative {
+        Len::Relative(v)
+    } else {
+        Len::Absolute(v)
+    })
 }
 
-const ATTRIBUTES: &str = "color, transparency, ambient, diffuse, specular, emissive, shine, texture";
+const ATTRIBUTES: &str =
+    "color, transparency, ambient, diffuse, specular, emissive, shine, texture";
 
 fn set_appearance(
     mut a: Appearance,
@@ -378,7 +442,13 @@ fn set_appearance(
         match name.value.as_str() {
             "texture" => match value {
                 AppearanceValue::Text(s) => a.texture = Some(s.value.clone()),
-                _ => return Err(Diagnostic::new("texture takes a file name in quotes", span, "texture")),
+                _ => {
+                    return Err(Diagnostic::new(
+                        "texture takes a file name in quotes",
+                        span,
+                        "texture",
+                    ));
+                }
             },
             "color" => a.color = rgb(value, scope, span)?,
             "diffuse" => a.diffuse = rgb(value, scope, span)?,
@@ -389,7 +459,9 @@ fn set_appearance(
             "shine" => a.shine = unit(value, scope, span)?,
             other => {
                 return Err(Diagnostic::new(
-                    format!("unknown appearance attribute \"{other}\"; attributes are {ATTRIBUTES}"),
+                    format!(
+                        "unknown appearance attribute \"{other}\"; attributes are {ATTRIBUTES}"
+                    ),
                     span,
                     "unknown attribute",
                 ));
@@ -404,7 +476,11 @@ fn component(e: &Expr, scope: &mut Scope) -> Result<f64, Diagnostic> {
     if (0.0..=1.0).contains(&v) {
         Ok(v)
     } else {
-        Err(Diagnostic::new(format!("appearance value {v} is outside 0..1"), e.span(), "outside 0..1"))
+        Err(Diagnostic::new(
+            format!("appearance value {v} is outside 0..1"),
+            e.span(),
+            "outside 0..1",
+        ))
     }
 }
 
@@ -412,19 +488,29 @@ fn unit(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64, D
     match value {
         AppearanceValue::Scalar(e) => component(e, scope),
         AppearanceValue::List(v) if v.len() == 1 => component(&v[0], scope),
-        _ => Err(Diagnostic::new("this attribute takes one number in 0..1", span, "one number")),
+        _ => Err(Diagnostic::new(
+            "this attribute takes one number in 0..1",
+            span,
+            "one number",
+        )),
     }
 }
 
 fn rgb(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<[f64; 3], Diagnostic> {
     match value {
-        AppearanceValue::List(v) if v.len() == 3 => {
-            Ok([component(&v[0], scope)?, component(&v[1], scope)?, component(&v[2], scope)?])
-        }
+        AppearanceValue::List(v) if v.len() == 3 => Ok([
+            component(&v[0], scope)?,
+            component(&v[1], scope)?,
+            component(&v[2], scope)?,
+        ]),
         AppearanceValue::Scalar(e) => {
             let g = component(e, scope)?;
             Ok([g; 3])
         }
-        _ => Err(Diagnostic::new("this attribute takes {r, g, b} in 0..1, or one grey value", span, "{r, g, b}")),
+        _ => Err(Diagnostic::new(
+            "this attribute takes {r, g, b} in 0..1, or one grey value",
+            span,
+            "{r, g, b}",
+        )),
     }
 }

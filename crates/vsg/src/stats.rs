@@ -52,7 +52,10 @@ impl Stats {
             *s.volume.by_symbol.entry(symbol.to_string()).or_default() += v;
             if n.state == NodeState::Terminal {
                 s.visible_volume += v;
-                let key = (shape.kind, shape.params().iter().map(|p| p.to_bits()).collect());
+                let key = (
+                    shape.kind,
+                    shape.params().iter().map(|p| p.to_bits()).collect(),
+                );
                 s.triangles += *triangles_of
                     .entry(key)
                     .or_insert_with(|| shape.mesh(tessellation).triangles.len());

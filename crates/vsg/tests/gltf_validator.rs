@@ -38,18 +38,30 @@ fn validator() -> Option<PathBuf> {
 }
 
 fn install(dir: &Path) -> Result<(), String> {
-    if dir.join("node_modules/gltf-validator/package.json").is_file() {
+    if dir
+        .join("node_modules/gltf-validator/package.json")
+        .is_file()
+    {
         return Ok(());
     }
     let out = Command::new("npm")
-        .args(["ci", "--no-audit", "--no-fund", "--loglevel=error", "--prefix"])
+        .args([
+            "ci",
+            "--no-audit",
+            "--no-fund",
+            "--loglevel=error",
+            "--prefix",
+        ])
         .arg(dir)
         .output()
         .map_err(|e| format!("cannot run npm: {e}"))?;
     if out.status.success() {
         Ok(())
     } else {
-        Err(format!("`npm ci` failed: {}", String::from_utf8_lossy(&out.stderr).trim()))
+        Err(format!(
+            "`npm ci` failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        ))
     }
 }
 
@@ -284,7 +296,9 @@ fn model_of_void_terminals_only_is_valid() {
 #[test]
 fn example_programs_are_valid() {
     for name in ["rules_7_1.vsg", "rules_7_3.vsg", "castle.vsg"] {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name);
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples")
+            .join(name);
         let src = std::fs::read_to_string(&path).expect("example exists");
         let model = vsg::run(&src, &vsg::RunOptions::default())
             .unwrap_or_else(|e| panic!("{}", e.render(name, &src)));

@@ -29,7 +29,14 @@ fn rules_7_1_counts() {
     assert_eq!(s.by_symbol["window"], 15);
     assert_eq!(s.by_symbol["interiorSpace"], 5);
     assert_eq!(s.by_symbol["floorRoof"], 5);
-    assert_eq!((s.by_symbol["wallN"], s.by_symbol["wallW"], s.by_symbol["wallE"]), (1, 1, 1));
+    assert_eq!(
+        (
+            s.by_symbol["wallN"],
+            s.by_symbol["wallW"],
+            s.by_symbol["wallE"]
+        ),
+        (1, 1, 1)
+    );
     assert_eq!(s.terminals, 58);
     assert_eq!(s.void_terminals, 5);
     assert_eq!(s.visible_terminals, 53);
@@ -40,20 +47,51 @@ fn rules_7_1_counts() {
 #[test]
 fn rules_7_1_volumes_add_up_to_the_mass_model() {
     let (_, s) = run("rules_7_1.vsg");
-    assert!(close(s.volume.total, 5.0 * 10.0 * 3.0), "{}", s.volume.total);
+    assert!(
+        close(s.volume.total, 5.0 * 10.0 * 3.0),
+        "{}",
+        s.volume.total
+    );
     assert!(close(s.volume.by_symbol["window"], 15.0 * 1.0 * 1.0 * 0.1));
-    assert!(close(s.volume.by_symbol["brickWall"], 5.0 * 10.0 * 0.1 - 1.5));
-    assert!(close(s.volume.by_symbol["interiorSpace"], 5.0 * 4.8 * 1.9 * 2.8));
+    assert!(close(
+        s.volume.by_symbol["brickWall"],
+        5.0 * 10.0 * 0.1 - 1.5
+    ));
+    assert!(close(
+        s.volume.by_symbol["interiorSpace"],
+        5.0 * 4.8 * 1.9 * 2.8
+    ));
     assert!(close(s.visible_volume, 150.0 - 5.0 * 4.8 * 1.9 * 2.8));
 }
 
 #[test]
 fn rules_7_1_window_band_follows_figure_7_1() {
     let (m, _) = run("rules_7_1.vsg");
-    let band = m.nodes.iter().position(|n| m.symbol(n) == "midWallS").unwrap();
-    let children: Vec<&str> = m.nodes[band].children().map(|c| m.symbol(&m.nodes[c as usize])).collect();
-    assert_eq!(children, ["brickWall", "window", "brickWall", "window", "brickWall", "window", "brickWall"]);
-    let xs: Vec<f64> = m.nodes[band].children().map(|c| m.nodes[c as usize].local.translation.x).collect();
+    let band = m
+        .nodes
+        .iter()
+        .position(|n| m.symbol(n) == "midWallS")
+        .unwrap();
+    let children: Vec<&str> = m.nodes[band]
+        .children()
+        .map(|c| m.symbol(&m.nodes[c as usize]))
+        .collect();
+    assert_eq!(
+        children,
+        [
+            "brickWall",
+            "window",
+            "brickWall",
+            "window",
+            "brickWall",
+            "window",
+            "brickWall"
+        ]
+    );
+    let xs: Vec<f64> = m.nodes[band]
+        .children()
+        .map(|c| m.nodes[c as usize].local.translation.x)
+        .collect();
     let want = [-2.25, -1.5, -0.75, 0.0, 0.75, 1.5, 2.25];
     for (x, w) in xs.iter().zip(want) {
         assert!(close(*x, w), "{xs:?}");
@@ -88,9 +126,19 @@ fn rules_7_3_volumes() {
     let (_, s) = run("rules_7_3.vsg");
     let tower = PI * 32.0 * 32.0 * 210.0;
     let keep = 104.0 * 175.0 * 200.0;
-    assert!(close(s.volume.total, 2.0 * tower + keep), "{}", s.volume.total);
-    assert!(close(s.volume.by_symbol["tower1Wall"], PI * (32.0 * 32.0 - 24.0 * 24.0) * 210.0));
-    assert!(close(s.volume.by_symbol["window"], (18.0 * 3.0 + 16.0) * 8.0 * (26.0 + 30.0)));
+    assert!(
+        close(s.volume.total, 2.0 * tower + keep),
+        "{}",
+        s.volume.total
+    );
+    assert!(close(
+        s.volume.by_symbol["tower1Wall"],
+        PI * (32.0 * 32.0 - 24.0 * 24.0) * 210.0
+    ));
+    assert!(close(
+        s.volume.by_symbol["window"],
+        (18.0 * 3.0 + 16.0) * 8.0 * (26.0 + 30.0)
+    ));
 }
 
 #[test]

@@ -1,10 +1,10 @@
 //! Production semantics (§7.1.1, §7.1.3): conditions, probabilities with a seed, overrides,
 //! transformations, relative lengths, and the kept semantic tree.
 
+use vsg::RunOptions;
 use vsg::shape::Tessellation;
 use vsg::stats::Stats;
 use vsg::tree::NodeState;
-use vsg::RunOptions;
 
 fn stats(src: &str, options: &RunOptions) -> Stats {
     let m = vsg::run(src, options).unwrap_or_else(|e| panic!("{}", e.render("t.vsg", src)));
@@ -23,12 +23,27 @@ clean :: {j3d.terminal};
 #[test]
 fn same_seed_same_model_other_seed_other_model() {
     let choices = |seed| {
-        let m = vsg::run(STOCHASTIC, &RunOptions { seed, ..Default::default() }).unwrap();
-        m.terminals().map(|n| m.symbol(n).to_string()).collect::<Vec<_>>()
+        let m = vsg::run(
+            STOCHASTIC,
+            &RunOptions {
+                seed,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        m.terminals()
+            .map(|n| m.symbol(n).to_string())
+            .collect::<Vec<_>>()
     };
     assert_eq!(choices(7), choices(7));
     assert_ne!(choices(7), choices(8));
-    let a = stats(STOCHASTIC, &RunOptions { seed: 7, ..Default::default() });
+    let a = stats(
+        STOCHASTIC,
+        &RunOptions {
+            seed: 7,
+            ..Default::default()
+        },
+    );
     let mossy = a.by_symbol["mossy"];
     assert!((15..=45).contains(&mossy), "{mossy} of 100 with p = 0.3");
 }
@@ -51,7 +66,13 @@ odd :: {j3d.terminal};
 fn set_overrides_a_declared_float() {
     let src = "float n = 4;\nAxiom :: I(\"box\", {n, 1, 1}){w};\nw :: repeat(\"X\", {1}){s};\ns :: {j3d.terminal};";
     assert_eq!(stats(src, &RunOptions::default()).terminals, 4);
-    let s = stats(src, &RunOptions { overrides: vec![("n".into(), 9.0)], ..Default::default() });
+    let s = stats(
+        src,
+        &RunOptions {
+            overrides: vec![("n".into(), 9.0)],
+            ..Default::default()
+        },
+    );
     assert_eq!(s.terminals, 9);
     assert!((s.volume.total - 9.0).abs() < 1e-12);
 }
@@ -97,9 +118,15 @@ fn non_terminals_are_kept_with_their_rule_lines() {
     let src = "Axiom :: I(\"box\", {2, 1, 1}){w};\nw :: split(\"X\", {1, 1}){a, a};\na :: void(){j3d.terminal};";
     let m = vsg::run(src, &RunOptions::default()).unwrap();
     let w = &m.nodes[1];
-    assert_eq!((m.symbol(w), w.state, w.rule_line, w.child_count), ("w", NodeState::NonTerminal, 1, 2));
+    assert_eq!(
+        (m.symbol(w), w.state, w.rule_line, w.child_count),
+        ("w", NodeState::NonTerminal, 1, 2)
+    );
     let a = &m.nodes[w.first_child as usize];
-    assert_eq!((a.state, a.rule_line, a.depth), (NodeState::VoidTerminal, 2, 2));
+    assert_eq!(
+        (a.state, a.rule_line, a.depth),
+        (NodeState::VoidTerminal, 2, 2)
+    );
 }
 
 #[test]
@@ -116,5 +143,9 @@ p :: {j3d.terminal};
         + 4.0 / 3.0 * std::f64::consts::PI * 8.0
         + std::f64::consts::PI * 2.0 / 3.0 * (9.0 + 3.0 + 1.0);
     assert_eq!(s.terminals, 7);
-    assert!((s.volume.total - whole).abs() < 1e-9 * whole, "{} vs {whole}", s.volume.total);
+    assert!(
+        (s.volume.total - whole).abs() < 1e-9 * whole,
+        "{} vs {whole}",
+        s.volume.total
+    );
 }

@@ -19,12 +19,35 @@ mod tests;
 use chumsky::error::{RichPattern, RichReason};
 use chumsky::prelude::*;
 
-use crate::ast::Program;
+use crate::ast::{Program, Span};
 use crate::diag::Diagnostic;
 use lexer::{Token, span};
 
+/// Stack of the parsing thread: chumsky's recursive descent takes about 130 KiB per bracket
+/// level in debug builds, so [`MAX_NESTING`] levels need more than a test thread's 2 MiB.
+const PARSER_STACK: usize = 64 << 20;
+
 /// Parses a whole program. On failure, returns every error found (at least one), in source order.
 pub fn parse(src: &str) -> Result<Program, Vec<Diagnostic>> {
+    std::thread::scope(|scope| {
+        let parser = std::thread::Builder::new()
+            .name("vsg-parse".into())
+            .stack_size(PARSER_STACK)
+            .spawn_scoped(scope, || parse_here(src));
+        match parser {
+            Ok(handle) => handle
+                .join()
+                .unwrap_or_else(|p| std::panic::resume_unwind(p)),
+            Err(e) => Err(vec![Diagnostic::new(
+                format!("cannot start the parser thread: {e}"),
+                Span::new(0, 0),
+                "",
+            )]),
+        }
+    })
+}
+
+fn parse_here(src: &str) -> Result<Program, Vec<Diagnostic>> {
     let (tokens, lex_errors) = lexer::lexer().parse(src).into_output_errors();
     if !lex_errors.is_empty() {
         return Err(sorted(
@@ -35,6 +58,7 @@ pub fn parse(src: &str) -> Result<Program, Vec<Diagnostic>> {
         ));
     }
     let tokens = tokens.unwrap_or_default();
+    check_nesting(&tokens)?;
     let eoi = SimpleSpan::from(src.len()..src.len());
     let (program, errors) = grammar::program()
         .parse(tokens.as_slice().split_token_span(eoi))
@@ -53,6 +77,52 @@ pub fn parse(src: &str) -> Result<Program, Vec<Diagnostic>> {
                 .collect(),
         )),
     }
+}
+
+/// Deepest bracket nesting a program may use.
+pub const MAX_NESTING: usize = 32;
+/// Most operators one expression may chain (counted through its enclosing brackets).
+pub const MAX_OPERATORS: usize = 256;
+
+/// Bounds how deep expressions can nest before they are parsed, since parsing and evaluating
+/// them recurse: a pathological program gets an error, never a stack overflow.
+fn check_nesting(tokens: &[lexer::Spanned]) -> Result<(), Vec<Diagnostic>> {
+    // Operators since the last separator, per open bracket level.
+    let mut runs: Vec<usize> = vec![0];
+    for (token, at) in tokens {
+        let Token::Punct(p) = token else { continue };
+        match *p {
+            "(" | "[" | "{" => {
+                if runs.len() > MAX_NESTING {
+                    return Err(vec![Diagnostic::new(
+                        format!("brackets nest more than {MAX_NESTING} deep"),
+                        span(*at),
+                        "too deep",
+                    )]);
+                }
+                runs.push(0);
+            }
+            ")" | "]" | "}" if runs.len() > 1 => {
+                runs.pop();
+            }
+            "," | ";" | ":" | "::" => *runs.last_mut().expect("never empty") = 0,
+            "+" | "-" | "*" | "/" | "%" | "!" | "<" | "<=" | ">" | ">=" | "==" | "!=" | "&&"
+            | "||" | "~" => {
+                *runs.last_mut().expect("never empty") += 1;
+                if runs.iter().sum::<usize>() > MAX_OPERATORS {
+                    return Err(vec![Diagnostic::new(
+                        format!(
+                            "expression chains more than {MAX_OPERATORS} operators; split it up with declarations"
+                        ),
+                        span(*at),
+                        "too long",
+                    )]);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 fn sorted(mut diags: Vec<Diagnostic>) -> Vec<Diagnostic> {

@@ -154,9 +154,14 @@ impl ShapeType {
         match self {
             ShapeType::Box | ShapeType::Ramp => &["length", "height", "thickness"],
             ShapeType::RampFrustum => &["length", "height", "thickness", "topLength"],
-            ShapeType::Parallelepiped => {
-                &["length", "height", "thickness", "offset1", "offset2", "offset3"]
-            }
+            ShapeType::Parallelepiped => &[
+                "length",
+                "height",
+                "thickness",
+                "offset1",
+                "offset2",
+                "offset3",
+            ],
             ShapeType::Cylinder | ShapeType::Cone => &["radius", "height"],
             ShapeType::ExtrudedRing => &["radius", "height", "innerRadius"],
             ShapeType::ExtrudedFan | ShapeType::ConicFan => &["radius", "height", "angle"],
@@ -172,9 +177,13 @@ impl ShapeType {
                 &["edge1", "edge2", "height", "angle", "topEdge1", "split"]
             }
             ShapeType::Sphere => &["radius"],
-            ShapeType::SphericalSector => {
-                &["radius", "thetaAngle", "phiAngle", "innerRadius", "phiStart"]
-            }
+            ShapeType::SphericalSector => &[
+                "radius",
+                "thetaAngle",
+                "phiAngle",
+                "innerRadius",
+                "phiStart",
+            ],
         }
     }
 
@@ -220,12 +229,13 @@ impl ShapeType {
 
     fn family(self) -> Family {
         match self {
-            ShapeType::Box | ShapeType::Ramp | ShapeType::RampFrustum | ShapeType::Parallelepiped => {
-                Family::Prism
-            }
-            ShapeType::Tetrahedron | ShapeType::TetrahedronFrustum | ShapeType::TetrahedronSector => {
-                Family::Wedge
-            }
+            ShapeType::Box
+            | ShapeType::Ramp
+            | ShapeType::RampFrustum
+            | ShapeType::Parallelepiped => Family::Prism,
+            ShapeType::Tetrahedron
+            | ShapeType::TetrahedronFrustum
+            | ShapeType::TetrahedronSector => Family::Wedge,
             ShapeType::Sphere | ShapeType::SphericalSector => Family::Spherical,
             _ => Family::Revolved,
         }
@@ -249,15 +259,36 @@ enum Family {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ShapeError {
     #[error("{kind} takes {expected} parameters ({names}), found {found}")]
-    ParamCount { kind: ShapeType, expected: String, names: String, found: usize },
+    ParamCount {
+        kind: ShapeType,
+        expected: String,
+        names: String,
+        found: usize,
+    },
     #[error("{kind} parameter {name} = {value} is invalid: {why}")]
-    BadParam { kind: ShapeType, name: &'static str, value: f64, why: String },
+    BadParam {
+        kind: ShapeType,
+        name: &'static str,
+        value: f64,
+        why: String,
+    },
     #[error("{kind} cannot be split along {axis}; Table 7.1 allows {allowed}")]
-    AxisNotAllowed { kind: ShapeType, axis: Axis, allowed: String },
+    AxisNotAllowed {
+        kind: ShapeType,
+        axis: Axis,
+        allowed: String,
+    },
     #[error("split length #{index} is {value}; lengths must be finite and positive")]
     BadLength { index: usize, value: f64 },
-    #[error("split lengths along {axis} add up to {sum}, but the {kind} measures {extent} along {axis}")]
-    LengthsDontFit { kind: ShapeType, axis: Axis, sum: f64, extent: f64 },
+    #[error(
+        "split lengths along {axis} add up to {sum}, but the {kind} measures {extent} along {axis}"
+    )]
+    LengthsDontFit {
+        kind: ShapeType,
+        axis: Axis,
+        sum: f64,
+        extent: f64,
+    },
     #[error("{0}")]
     Unsupported(String),
 }
@@ -409,7 +440,11 @@ impl Primitive {
             Err(ShapeError::AxisNotAllowed {
                 kind: self.kind,
                 axis,
-                allowed: allowed.iter().map(|a| a.name()).collect::<Vec<_>>().join(", "),
+                allowed: allowed
+                    .iter()
+                    .map(|a| a.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })
         }
     }
@@ -438,12 +473,21 @@ fn fit_intervals(
     }
     let sum: f64 = lengths.iter().sum();
     if lengths.is_empty() || (sum - extent).abs() > FIT_TOLERANCE * extent.max(1e-12) {
-        return Err(ShapeError::LengthsDontFit { kind, axis, sum, extent });
+        return Err(ShapeError::LengthsDontFit {
+            kind,
+            axis,
+            sum,
+            extent,
+        });
     }
     let mut start = 0.0;
     let mut out = Vec::with_capacity(lengths.len());
     for (i, &l) in lengths.iter().enumerate() {
-        let end = if i + 1 == lengths.len() { extent } else { start + l };
+        let end = if i + 1 == lengths.len() {
+            extent
+        } else {
+            start + l
+        };
         out.push((start, end));
         start = end;
     }

@@ -54,8 +54,14 @@ fn every_type_name_round_trips() {
     for k in ShapeType::ALL {
         assert_eq!(ShapeType::parse(k.name()), Some(k));
     }
-    assert_eq!(ShapeType::parse("Conic Frustum"), Some(ShapeType::ConicFrustum));
-    assert_eq!(ShapeType::parse("extruded_ring"), Some(ShapeType::ExtrudedRing));
+    assert_eq!(
+        ShapeType::parse("Conic Frustum"),
+        Some(ShapeType::ConicFrustum)
+    );
+    assert_eq!(
+        ShapeType::parse("extruded_ring"),
+        Some(ShapeType::ExtrudedRing)
+    );
     assert_eq!(ShapeType::parse("pyramid"), None);
 }
 
@@ -63,7 +69,11 @@ fn every_type_name_round_trips() {
 fn meshes_are_closed_and_oriented() {
     for p in samples() {
         let m = p.mesh(&Tessellation { segments: 24 });
-        assert!(m.is_closed_oriented(), "{} mesh is not closed and oriented", p.kind);
+        assert!(
+            m.is_closed_oriented(),
+            "{} mesh is not closed and oriented",
+            p.kind
+        );
         assert!(m.signed_volume() > 0.0, "{} mesh is inside out", p.kind);
     }
 }
@@ -75,7 +85,12 @@ fn mesh_volume_matches_analytic_volume() {
         let m = p.mesh(&Tessellation { segments: 512 });
         let rel = (m.signed_volume() - exact).abs() / exact;
         let tol = if is_curved(p.kind) { 2e-3 } else { 1e-9 };
-        assert!(rel < tol, "{}: mesh {} vs exact {exact}", p.kind, m.signed_volume());
+        assert!(
+            rel < tol,
+            "{}: mesh {} vs exact {exact}",
+            p.kind,
+            m.signed_volume()
+        );
     }
 }
 
@@ -124,7 +139,12 @@ fn every_allowed_split_conserves_volume_and_stays_inside() {
             );
             for q in &pieces {
                 let m = q.primitive.mesh(&Tessellation { segments: 256 });
-                assert!(m.is_closed_oriented(), "{} split {axis}: piece {} open", p.kind, q.primitive.kind);
+                assert!(
+                    m.is_closed_oriented(),
+                    "{} split {axis}: piece {} open",
+                    p.kind,
+                    q.primitive.kind
+                );
                 for v in &m.positions {
                     let w = q.transform * nalgebra::Point3::new(v[0], v[1], v[2]);
                     for k in 0..3 {
@@ -158,8 +178,14 @@ fn disallowed_axes_are_errors() {
 #[test]
 fn lengths_that_do_not_fit_are_errors() {
     let b = Primitive::new(ShapeType::Box, &[6.0, 1.0, 1.0]).unwrap();
-    assert!(matches!(b.split(Axis::X, &[1.0, 3.0]), Err(ShapeError::LengthsDontFit { .. })));
-    assert!(matches!(b.split(Axis::X, &[1.0, -3.0, 8.0]), Err(ShapeError::BadLength { .. })));
+    assert!(matches!(
+        b.split(Axis::X, &[1.0, 3.0]),
+        Err(ShapeError::LengthsDontFit { .. })
+    ));
+    assert!(matches!(
+        b.split(Axis::X, &[1.0, -3.0, 8.0]),
+        Err(ShapeError::BadLength { .. })
+    ));
     assert_eq!(b.split(Axis::X, &[1.0, 3.0, 2.0 + 1e-9]).unwrap().len(), 3);
 }
 
