@@ -115,6 +115,13 @@ pub struct DetectorArgs {
     /// Keep edge points at integer pixel positions (as §2.1.1 does).
     #[arg(long)]
     pub no_subpixel: bool,
+    /// Outlier distance (px) of the refit and of the inlier sets (§2.1.3).
+    #[arg(long, default_value_t = corners::Params::default().refit_distance, value_parser = parse_positive)]
+    pub refit_distance: f64,
+    /// Skip windows whose gradient orientations agree more than this (one straight contour);
+    /// 1 fits every window (speed-up, not in §2.1).
+    #[arg(long, default_value_t = corners::Params::default().max_coherence, value_parser = parse_positive)]
+    pub max_coherence: f64,
 }
 
 impl DetectorArgs {
@@ -129,6 +136,8 @@ impl DetectorArgs {
             refit: !self.no_refit,
             subpixel: !self.no_subpixel,
             rectified: self.rectified,
+            refit_distance: self.refit_distance,
+            max_coherence: self.max_coherence,
             ..corners::Params::default()
         }
     }
@@ -159,7 +168,9 @@ pub struct CornersEvalArgs {
 }
 
 fn parse_window(s: &str) -> Result<usize, String> {
-    let w: usize = s.parse().map_err(|_| format!("'{s}' is not a whole number"))?;
+    let w: usize = s
+        .parse()
+        .map_err(|_| format!("'{s}' is not a whole number"))?;
     if w < 3 || w % 2 == 0 || w > 101 {
         return Err(format!("the window must be odd, from 3 to 101 (found {w})"));
     }
@@ -167,7 +178,10 @@ fn parse_window(s: &str) -> Result<usize, String> {
 }
 
 fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|_| format!("'{s}' is not a number"))?;
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
     if !v.is_finite() {
         return Err(format!("'{s}' is not a finite number"));
     }
@@ -250,7 +264,13 @@ mod tests {
 
     #[test]
     fn rectified_flag() {
-        assert!(corners_args(&["--rectified"]).unwrap().detector.params().rectified);
+        assert!(
+            corners_args(&["--rectified"])
+                .unwrap()
+                .detector
+                .params()
+                .rectified
+        );
     }
 
     #[test]
@@ -271,8 +291,18 @@ mod tests {
     #[test]
     fn threshold_flags() {
         let p = corners_args(&[
-            "--max-epsilon", "0.7", "--lambda-min", "0.2", "--lambda-max", "0.8",
-            "--max-delta", "1.5", "--psi-min", "0.1", "--psi-max", "1.4",
+            "--max-epsilon",
+            "0.7",
+            "--lambda-min",
+            "0.2",
+            "--lambda-max",
+            "0.8",
+            "--max-delta",
+            "1.5",
+            "--psi-min",
+            "0.1",
+            "--psi-max",
+            "1.4",
         ])
         .unwrap()
         .detector
@@ -287,21 +317,47 @@ mod tests {
 
     #[test]
     fn refit_and_subpixel_switches() {
-        let p = corners_args(&["--no-refit", "--no-subpixel"]).unwrap().detector.params();
+        let p = corners_args(&["--no-refit", "--no-subpixel"])
+            .unwrap()
+            .detector
+            .params();
         assert!(!p.refit && !p.subpixel);
+    }
+
+    #[test]
+    fn refit_distance_and_coherence_flags() {
+        let p = corners_args(&["--refit-distance", "1.5", "--max-coherence", "1"])
+            .unwrap()
+            .detector
+            .params();
+        assert_eq!((p.refit_distance, p.max_coherence), (1.5, 1.0));
+        assert!(corners_args(&["--refit-distance", "0"]).is_err());
     }
 
     #[test]
     fn eval_takes_sequences_and_output() {
         let a = eval_args(&[]).unwrap();
-        assert_eq!(a.sequences, vec![PathBuf::from("graf"), PathBuf::from("wall")]);
+        assert_eq!(
+            a.sequences,
+            vec![PathBuf::from("graf"), PathBuf::from("wall")]
+        );
         assert_eq!(a.output, PathBuf::from("out"));
         assert!(Cli::try_parse_from(["castellan", "corners-eval", "-o", "out"]).is_err());
     }
 
     #[test]
     fn eval_peers_r0_threads_overlays_flags() {
-        let a = eval_args(&["--peers", "p", "--r0", "3", "--threads", "1", "--overlays", "0.5"]).unwrap();
+        let a = eval_args(&[
+            "--peers",
+            "p",
+            "--r0",
+            "3",
+            "--threads",
+            "1",
+            "--overlays",
+            "0.5",
+        ])
+        .unwrap();
         assert_eq!(a.peers, Some(PathBuf::from("p")));
         assert_eq!((a.r0, a.threads, a.overlays), (3.0, 1, Some(0.5)));
         assert_eq!(eval_args(&[]).unwrap().r0, 5.0);

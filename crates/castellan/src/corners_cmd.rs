@@ -151,8 +151,8 @@ fn evaluate_sequence(
         let p = peer_dir.join(format!("{name}.json"));
         let text =
             std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
-        let peers: PeerFile =
-            serde_json::from_str(&text).with_context(|| format!("{}: not a peer file", p.display()))?;
+        let peers: PeerFile = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a peer file", p.display()))?;
         for (det, points) in peers.detectors {
             if points.len() != paths.len() {
                 bail!(
@@ -177,7 +177,14 @@ fn evaluate_sequence(
                 .iter()
                 .enumerate()
                 .map(|(i, h)| {
-                    repeatability(&run.points[0], sizes[0], &run.points[i + 1], sizes[i + 1], h, args.r0)
+                    repeatability(
+                        &run.points[0],
+                        sizes[0],
+                        &run.points[i + 1],
+                        sizes[i + 1],
+                        h,
+                        args.r0,
+                    )
                 })
                 .collect()
         })
@@ -192,7 +199,9 @@ fn evaluate_sequence(
 }
 
 fn mean(v: impl IntoIterator<Item = f64>) -> f64 {
-    let (s, n) = v.into_iter().fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    let (s, n) = v
+        .into_iter()
+        .fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
     if n == 0 { f64::NAN } else { s / n as f64 }
 }
 
@@ -203,7 +212,11 @@ fn csv(seqs: &[Sequence]) -> String {
     for s in seqs {
         for (run, rates) in s.runs.iter().zip(&s.rates) {
             for (i, pts) in run.points.iter().enumerate() {
-                let t = run.time_ms.get(i).map(|t| format!("{t:.2}")).unwrap_or_default();
+                let t = run
+                    .time_ms
+                    .get(i)
+                    .map(|t| format!("{t:.2}"))
+                    .unwrap_or_default();
                 let r = if i == 0 {
                     ",,,".to_string()
                 } else {
@@ -233,7 +246,11 @@ fn markdown(seqs: &[Sequence], r0: f64, threads: usize) -> String {
          1-to-1 mutual nearest neighbours over the region both images see; `det/img` is the mean \
          number of detections per image; `ms/img` the mean detection time per image \
          (IPFIT on {} thread(s); peers as timed by `benches/corners_peers.py`).\n",
-        if threads == 0 { "all".to_string() } else { threads.to_string() }
+        if threads == 0 {
+            "all".to_string()
+        } else {
+            threads.to_string()
+        }
     );
     let mut names: Vec<String> = Vec::new();
     for s in seqs {
@@ -278,7 +295,11 @@ fn markdown(seqs: &[Sequence], r0: f64, threads: usize) -> String {
             }
             let det = mean(run.points.iter().map(|p| p.len() as f64));
             let t = mean(run.time_ms.iter().copied());
-            let t = if t.is_nan() { "–".to_string() } else { format!("{t:.1}") };
+            let t = if t.is_nan() {
+                "–".to_string()
+            } else {
+                format!("{t:.1}")
+            };
             let _ = writeln!(md, " {det:.0} | {t} |");
         }
         let t = |name: &str| {
@@ -314,7 +335,10 @@ pub fn eval(args: &CornersEvalArgs) -> Result<()> {
         seqs.push(s);
     }
     let mut outputs = Outputs::default();
-    outputs.add(&args.output.join("repeatability.csv"), csv(&seqs).into_bytes());
+    outputs.add(
+        &args.output.join("repeatability.csv"),
+        csv(&seqs).into_bytes(),
+    );
     outputs.add(
         &args.output.join("repeatability.md"),
         markdown(&seqs, args.r0, args.threads).into_bytes(),
@@ -333,7 +357,10 @@ pub fn eval(args: &CornersEvalArgs) -> Result<()> {
             })
             .collect();
         let path = args.output.join(format!("{}.png", s.name));
-        outputs.add(&path, png_bytes(&corners::draw::plot(&s.name, &series), &path)?);
+        outputs.add(
+            &path,
+            png_bytes(&corners::draw::plot(&s.name, &series), &path)?,
+        );
         if let Some(img) = &s.overlay {
             let path = args.output.join(format!("{}_overlay.png", s.name));
             outputs.add(&path, png_bytes(img, &path)?);

@@ -38,7 +38,10 @@ fn writes_corners_json_and_overlay() {
         .assert()
         .success();
     let v = corners_json(&out);
-    assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(80), Some(60)));
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(80), Some(60))
+    );
     let cs = v["corners"].as_array().unwrap();
     assert_eq!(cs.len(), 4);
     for c in cs {
@@ -59,15 +62,31 @@ fn sixteen_bit_and_rgba_images_are_converted() {
     let dir = tempfile::tempdir().unwrap();
     let g = square(80, 60, 20, 15, 30);
     let g16: image::ImageBuffer<image::Luma<u16>, Vec<u16>> =
-        image::ImageBuffer::from_fn(80, 60, |x, y| image::Luma([g.get_pixel(x, y)[0] as u16 * 257]));
+        image::ImageBuffer::from_fn(80, 60, |x, y| {
+            image::Luma([g.get_pixel(x, y)[0] as u16 * 257])
+        });
     let p16 = dir.path().join("g16.png");
     g16.save(&p16).unwrap();
     let prgba = dir.path().join("rgba.png");
-    image::DynamicImage::ImageLuma8(g).to_rgba8().save(&prgba).unwrap();
+    image::DynamicImage::ImageLuma8(g)
+        .to_rgba8()
+        .save(&prgba)
+        .unwrap();
     for p in [p16, prgba] {
         let out = dir.path().join("c.json");
-        castellan().arg("corners").arg(&p).arg("-o").arg(&out).assert().success();
-        assert_eq!(corners_json(&out)["corners"].as_array().unwrap().len(), 4, "{}", p.display());
+        castellan()
+            .arg("corners")
+            .arg(&p)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        assert_eq!(
+            corners_json(&out)["corners"].as_array().unwrap().len(),
+            4,
+            "{}",
+            p.display()
+        );
     }
 }
 
@@ -76,9 +95,17 @@ fn tiny_and_edgeless_images_give_no_corners() {
     let dir = tempfile::tempdir().unwrap();
     for (name, w, h) in [("one.png", 1, 1), ("flat.png", 50, 40)] {
         let p = dir.path().join(name);
-        image::GrayImage::from_pixel(w, h, image::Luma([128])).save(&p).unwrap();
+        image::GrayImage::from_pixel(w, h, image::Luma([128]))
+            .save(&p)
+            .unwrap();
         let out = dir.path().join("c.json");
-        castellan().arg("corners").arg(&p).arg("-o").arg(&out).assert().success();
+        castellan()
+            .arg("corners")
+            .arg(&p)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
         let v = corners_json(&out);
         assert_eq!(v["corners"].as_array().unwrap().len(), 0);
         assert_eq!(v["width"].as_u64(), Some(w as u64));
@@ -93,9 +120,18 @@ fn unreadable_files_fail_with_their_name_and_no_output() {
     let missing = dir.path().join("missing.png");
     for p in [bad, missing] {
         let out = dir.path().join("c.json");
-        let assert = castellan().arg("corners").arg(&p).arg("-o").arg(&out).assert().failure();
+        let assert = castellan()
+            .arg("corners")
+            .arg(&p)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .failure();
         let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
-        assert!(err.contains(&*p.file_name().unwrap().to_string_lossy()), "{err}");
+        assert!(
+            err.contains(&*p.file_name().unwrap().to_string_lossy()),
+            "{err}"
+        );
         assert!(!out.exists());
     }
 }
@@ -112,7 +148,9 @@ fn eval_on_a_shifted_sequence_with_peers() {
     let mut fake = Vec::new();
     for k in 1..=3u32 {
         let (dx, dy) = (3 * (k - 1), 2 * (k - 1));
-        square(120, 100, 30 + dx, 25 + dy, 40).save(seq.join(format!("img{k}.png"))).unwrap();
+        square(120, 100, 30 + dx, 25 + dy, 40)
+            .save(seq.join(format!("img{k}.png")))
+            .unwrap();
         if k > 1 {
             std::fs::write(
                 seq.join(format!("H1to{k}p")),
@@ -122,9 +160,16 @@ fn eval_on_a_shifted_sequence_with_peers() {
         }
         let (x, y) = ((30 + dx) as f64 - 0.5, (25 + dy) as f64 - 0.5);
         let stray = [10.0 + 30.0 * k as f64, 90.0];
-        fake.push(vec![[x, y], [x + 40.0, y], [x, y + 40.0], [x + 40.0, y + 40.0], stray]);
+        fake.push(vec![
+            [x, y],
+            [x + 40.0, y],
+            [x, y + 40.0],
+            [x + 40.0, y + 40.0],
+            stray,
+        ]);
     }
-    let peer = serde_json::json!({"detectors": {"Fake": fake}, "time_ms": {"Fake": [1.0, 1.0, 1.0]}});
+    let peer =
+        serde_json::json!({"detectors": {"Fake": fake}, "time_ms": {"Fake": [1.0, 1.0, 1.0]}});
     std::fs::write(peers.join("shift.json"), peer.to_string()).unwrap();
     let out = dir.path().join("eval");
     castellan()
@@ -138,7 +183,11 @@ fn eval_on_a_shifted_sequence_with_peers() {
         .assert()
         .success();
     let csv = std::fs::read_to_string(out.join("repeatability.csv")).unwrap();
-    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
     assert_eq!(rows.len(), 6);
     for r in &rows {
         let rate = r[10];
@@ -152,7 +201,10 @@ fn eval_on_a_shifted_sequence_with_peers() {
     let md = std::fs::read_to_string(out.join("repeatability.md")).unwrap();
     assert!(md.contains("| shift | 1.000 | 0.800 |"), "{md}");
     assert!(image::open(out.join("shift.png")).is_ok());
-    assert_eq!(image::open(out.join("shift_overlay.png")).unwrap().width(), 60);
+    assert_eq!(
+        image::open(out.join("shift_overlay.png")).unwrap().width(),
+        60
+    );
 }
 
 #[test]
@@ -161,10 +213,18 @@ fn eval_without_homographies_fails_and_writes_nothing() {
     let seq = dir.path().join("seq");
     std::fs::create_dir(&seq).unwrap();
     for k in 1..=2 {
-        square(40, 40, 10, 10, 20).save(seq.join(format!("img{k}.png"))).unwrap();
+        square(40, 40, 10, 10, 20)
+            .save(seq.join(format!("img{k}.png")))
+            .unwrap();
     }
     let out = dir.path().join("eval");
-    let assert = castellan().arg("corners-eval").arg(&seq).arg("-o").arg(&out).assert().failure();
+    let assert = castellan()
+        .arg("corners-eval")
+        .arg(&seq)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure();
     let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(err.contains("H1to2p"), "{err}");
     assert!(!out.exists());

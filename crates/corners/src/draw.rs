@@ -24,7 +24,11 @@ pub const PALETTE: [[u8; 3]; 8] = [
 /// yellow and cyan segments of `arm` pixels from the corner. `scale` resizes the output (e.g.
 /// 0.5 for documentation figures); positions are scaled with it.
 pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage {
-    let scale = if scale > 0.0 && scale.is_finite() { scale } else { 1.0 };
+    let scale = if scale > 0.0 && scale.is_finite() {
+        scale
+    } else {
+        1.0
+    };
     let w = ((img.width as f64 * scale).round() as u32).max(1);
     let h = ((img.height as f64 * scale).round() as u32).max(1);
     let mut out = RgbImage::new(w, h);
@@ -46,7 +50,12 @@ pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage
             draw_line_segment_mut(&mut out, (cx - dx, cy - dy), (cx + dx, cy + dy), col);
         }
         let r = (3.0 * scale.max(0.5)).round() as i32;
-        draw_hollow_circle_mut(&mut out, (cx.round() as i32, cy.round() as i32), r, Rgb([255, 40, 40]));
+        draw_hollow_circle_mut(
+            &mut out,
+            (cx.round() as i32, cy.round() as i32),
+            r,
+            Rgb([255, 40, 40]),
+        );
     }
     out
 }
@@ -114,8 +123,9 @@ pub fn text(img: &mut RgbImage, x: i32, y: i32, text: &str, px: u32, color: [u8;
             for (r, row) in rows.iter().enumerate() {
                 for (k, b) in row.bytes().enumerate() {
                     if b == b'#' {
-                        let rect = Rect::at(cx + (k as u32 * px) as i32, y + (r as u32 * px) as i32)
-                            .of_size(px, px);
+                        let rect =
+                            Rect::at(cx + (k as u32 * px) as i32, y + (r as u32 * px) as i32)
+                                .of_size(px, px);
                         draw_filled_rect_mut(img, rect, Rgb(color));
                     }
                 }
@@ -170,7 +180,12 @@ fn panel(
     for k in 0..=5 {
         let v = ymax * k as f64 / 5.0;
         let y = y_at(v);
-        draw_line_segment_mut(img, (left as f32, y), ((left + w) as f32, y), Rgb([225, 225, 225]));
+        draw_line_segment_mut(
+            img,
+            (left as f32, y),
+            ((left + w) as f32, y),
+            Rgb([225, 225, 225]),
+        );
         draw_line_segment_mut(img, (left as f32 - 5.0, y), (left as f32, y), black);
         let label = fmt_tick(v);
         let lw = label.len() as i32 * 8;
@@ -179,10 +194,27 @@ fn panel(
     for i in 0..n {
         let x = x_at(i);
         draw_line_segment_mut(img, (x, (top + h) as f32), (x, (top + h + 5) as f32), black);
-        text(img, x as i32 - 3, top + h + 9, &(x0 + i).to_string(), 2, [0, 0, 0]);
+        text(
+            img,
+            x as i32 - 3,
+            top + h + 9,
+            &(x0 + i).to_string(),
+            2,
+            [0, 0, 0],
+        );
     }
-    draw_line_segment_mut(img, (left as f32, top as f32), (left as f32, (top + h) as f32), black);
-    draw_line_segment_mut(img, (left as f32, (top + h) as f32), ((left + w) as f32, (top + h) as f32), black);
+    draw_line_segment_mut(
+        img,
+        (left as f32, top as f32),
+        (left as f32, (top + h) as f32),
+        black,
+    );
+    draw_line_segment_mut(
+        img,
+        (left as f32, (top + h) as f32),
+        ((left + w) as f32, (top + h) as f32),
+        black,
+    );
     text(img, left, top - 22, title, 3, [0, 0, 0]);
     for (vals, col) in curves {
         let pts: Vec<(f32, f32)> = vals
@@ -224,7 +256,17 @@ pub fn plot(title: &str, series: &[Series]) -> RgbImage {
         .iter()
         .map(|s| (s.detections.as_slice(), s.color))
         .collect();
-    panel(&mut img, 590, 80, 380, 290, "detections", 1, nice_max(dmax), &det);
+    panel(
+        &mut img,
+        590,
+        80,
+        380,
+        290,
+        "detections",
+        1,
+        nice_max(dmax),
+        &det,
+    );
     let (mut x, mut y) = (20, 420);
     for s in series {
         let needed = 28 + s.name.len() as i32 * 8 + 24;

@@ -61,6 +61,9 @@ pub struct EdgeMap {
     pub mag: Vec<f32>,
     /// Sub-pixel offset (dx, dy) of each kept edge point from its pixel centre.
     pub offset: Vec<[f32; 2]>,
+    /// Gradient orientation of each kept edge point as the doubled-angle unit vector
+    /// (cos 2θ, sin 2θ), so opposite gradients agree; (0, 0) elsewhere.
+    pub orient: Vec<[f32; 2]>,
     /// The image-wide mean of E used as threshold.
     pub mean: f32,
 }
@@ -92,14 +95,19 @@ pub fn smooth(img: &Gray, kernel: &[f32]) -> Gray {
     tmp.par_chunks_mut(w.max(1))
         .enumerate()
         .for_each(|(y, row)| {
+            // Replicate the border into a padded row so the inner loop has no bounds logic.
             let src = &img.data[y * w..(y + 1) * w];
+            let ru = r as usize;
+            let mut pad = Vec::with_capacity(w + 2 * ru);
+            pad.extend(std::iter::repeat_n(src[0], ru));
+            pad.extend_from_slice(src);
+            pad.extend(std::iter::repeat_n(src[w - 1], ru));
             for (x, out) in row.iter_mut().enumerate() {
-                let mut acc = 0.0;
-                for (k, &g) in kernel.iter().enumerate() {
-                    let xx = (x as isize + k as isize - r).clamp(0, w as isize - 1) as usize;
-                    acc += g * src[xx];
-                }
-                *out = acc;
+                *out = pad[x..x + kernel.len()]
+                    .iter()
+                    .zip(kernel)
+                    .map(|(a, b)| a * b)
+                    .sum();
             }
         });
     let mut out = vec![0f32; w * h];
@@ -126,6 +134,7 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
         height: h,
         mag: vec![0.0; w * h],
         offset: vec![[0.0; 2]; w * h],
+        orient: vec![[0.0; 2]; w * h],
         mean: 0.0,
     };
     if w < 3 || h < 3 {
@@ -160,10 +169,12 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
     }
     let mut mag = vec![0f32; w * h];
     let mut offset = vec![[0f32; 2]; w * h];
+    let mut orient = vec![[0f32; 2]; w * h];
     mag.par_chunks_mut(w)
         .zip(offset.par_chunks_mut(w))
+        .zip(orient.par_chunks_mut(w))
         .enumerate()
-        .for_each(|(y, (rm, ro))| {
+        .for_each(|(y, ((rm, ro), rd))| {
             if y < 2 || y + 2 >= h {
                 return;
             }
@@ -195,6 +206,8 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
                     continue;
                 }
                 rm[x] = m;
+                // cos 2θ = (dx² − dy²)/m, sin 2θ = 2 dx dy/m with m = dx² + dy².
+                rd[x] = [(dx * dx - dy * dy) / m, 2.0 * dx * dy / m];
                 if subpixel {
                     // Departure (§2.1.1 keeps integer positions): a parabola through the three
                     // samples along the gradient places the edge to a fraction of a pixel.
@@ -213,6 +226,7 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
         height: h,
         mag,
         offset,
+        orient,
         mean,
     }
 }

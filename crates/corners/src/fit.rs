@@ -101,14 +101,13 @@ pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
             }
         }
     }
+    #[allow(clippy::needless_range_loop)] // mirror the upper triangle
     for i in 0..6 {
         for j in 0..i {
             m[i][j] = m[j][i];
         }
     }
-    let blk = |r0: usize, c0: usize| {
-        Matrix3::from_fn(|i, j| m[r0 + i][c0 + j])
-    };
+    let blk = |r0: usize, c0: usize| Matrix3::from_fn(|i, j| m[r0 + i][c0 + j]);
     let s1 = blk(0, 0);
     let s2 = blk(0, 3);
     let s3 = blk(3, 3);
@@ -126,16 +125,10 @@ pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
     let c1 = Matrix3::new(0.0, 0.0, -2.0, 0.0, 1.0, 0.0, -2.0, 0.0, 0.0);
     let k = l_inv * c1 * l_inv.transpose();
     let k = (k + k.transpose()) * 0.5;
-    let eig = SymmetricEigen::new(k);
-    let (imax, &mu) = eig
-        .eigenvalues
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.total_cmp(b.1))?;
+    let (mu, u) = largest_eigen(&k)?;
     if !(mu > 0.0) {
         return None;
     }
-    let u: Vector3<f64> = eig.eigenvectors.column(imax).into();
     let a1 = l_inv.transpose() * u;
     let a2 = t * a1;
     // Back to input units: x_scaled = x / scale.
@@ -148,6 +141,44 @@ pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
         f: a2[2],
     };
     conic.normalised()
+}
+
+/// Largest eigenvalue and its unit eigenvector of a symmetric 3 × 3 matrix, in closed form
+/// (trigonometric solution of the characteristic cubic; the eigenvector is the longest cross
+/// product of two rows of K − μI). Falls back to the iterative solver when the closed form is
+/// ill-conditioned.
+fn largest_eigen(k: &Matrix3<f64>) -> Option<(f64, Vector3<f64>)> {
+    let p1 = k[(0, 1)].powi(2) + k[(0, 2)].powi(2) + k[(1, 2)].powi(2);
+    let q = k.trace() / 3.0;
+    let p2 = (k[(0, 0)] - q).powi(2) + (k[(1, 1)] - q).powi(2) + (k[(2, 2)] - q).powi(2) + 2.0 * p1;
+    let p = (p2 / 6.0).sqrt();
+    if p > 0.0 && p.is_finite() {
+        let b = (k - Matrix3::identity() * q) / p;
+        let r = (b.determinant() / 2.0).clamp(-1.0, 1.0);
+        let mu = q + 2.0 * p * (r.acos() / 3.0).cos();
+        let m = k - Matrix3::identity() * mu;
+        let (r0, r1, r2) = (
+            m.row(0).transpose(),
+            m.row(1).transpose(),
+            m.row(2).transpose(),
+        );
+        let cands = [r0.cross(&r1), r0.cross(&r2), r1.cross(&r2)];
+        let best = cands
+            .iter()
+            .max_by(|a, b| a.norm_squared().total_cmp(&b.norm_squared()))?;
+        let n = best.norm();
+        // A well separated eigenvalue gives a long cross product; otherwise iterate.
+        if n > 1e-6 * p * p {
+            return Some((mu, best / n));
+        }
+    }
+    let eig = SymmetricEigen::new(*k);
+    let (imax, &mu) = eig
+        .eigenvalues
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))?;
+    Some((mu, eig.eigenvectors.column(imax).into()))
 }
 
 /// The shape model of §2.1.3: corner s, unit asymptote directions v₁, v₂, and the standard
@@ -251,9 +282,16 @@ mod tests {
         assert!((q.discriminant() - 1.0).abs() < 1e-9);
         assert!(q.delta().abs() < 1e-6, "Δ = {}", q.delta());
         let h = Asymptotes::of(&q).unwrap();
-        assert!((h.s[0] - c[0]).abs() < 1e-6 && (h.s[1] - c[1]).abs() < 1e-6, "{:?}", h.s);
+        assert!(
+            (h.s[0] - c[0]).abs() < 1e-6 && (h.s[1] - c[1]).abs() < 1e-6,
+            "{:?}",
+            h.s
+        );
         assert!((h.line_angle() - 1.2).abs() < 1e-6);
-        let dirs: Vec<f64> = h.v.iter().map(|v| v[1].atan2(v[0]).rem_euclid(std::f64::consts::PI)).collect();
+        let dirs: Vec<f64> =
+            h.v.iter()
+                .map(|v| v[1].atan2(v[0]).rem_euclid(std::f64::consts::PI))
+                .collect();
         for t in [t1, t2] {
             assert!(dirs.iter().any(|d| (d - t).abs() < 1e-6), "{dirs:?} vs {t}");
         }
@@ -278,6 +316,19 @@ mod tests {
         assert!((h.psi - 0.5f64.atan()).abs() < 1e-6, "ψ = {}", h.psi);
         // Δ = a′c′f″ with 4a′c′ = −1: here the conic is x′²/4 − y′² − 1, Δ = 1/4.
         assert!((q.delta() - 0.25).abs() < 1e-6, "Δ = {}", q.delta());
+    }
+
+    #[test]
+    fn closed_form_eigen_matches_the_iterative_one() {
+        let k = Matrix3::new(2.0, -0.5, 0.3, -0.5, -1.0, 0.7, 0.3, 0.7, 0.5);
+        let (mu, v) = largest_eigen(&k).unwrap();
+        let eig = SymmetricEigen::new(k);
+        let top = eig.eigenvalues.max();
+        assert!((mu - top).abs() < 1e-9);
+        assert!(((k * v) - v * mu).norm() < 1e-9);
+        // A multiple of the identity has no preferred vector but still an answer.
+        let (mu, v) = largest_eigen(&(Matrix3::identity() * 3.0)).unwrap();
+        assert!((mu - 3.0).abs() < 1e-12 && (v.norm() - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -37,6 +37,9 @@
 //! vertex lies g = 2√(2Δ / tan ψ) pixels from the corner. The threshold on Δ thus bounds how
 //! far the fitted curve rounds the corner off (default 0.25: g ≈ 1.4 px at 90°).
 
+// Thresholds are written `!(x < bound)` on purpose: a NaN feature must fail every test.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod detect;
 pub mod draw;
 pub mod edge;

@@ -13,7 +13,8 @@ use crate::Error;
 pub struct Homography(pub [[f64; 3]; 3]);
 
 impl Homography {
-    pub const IDENTITY: Homography = Homography([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    pub const IDENTITY: Homography =
+        Homography([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
 
     /// Parses the Oxford text format: nine numbers, row by row, separated by white space
     /// (`8.7976964e-01` and `-1.14E-4` styles both occur).
@@ -187,7 +188,10 @@ mod tests {
         )
         .unwrap();
         assert!((a.0[0][2] + 39.430589).abs() < 1e-9);
-        let b = Homography::parse("0.78 0.01 28.1  \n-0.02 0.92 44.2  \n-1.1457814415224265E-4 1.28E-5 1.0  \n").unwrap();
+        let b = Homography::parse(
+            "0.78 0.01 28.1  \n-0.02 0.92 44.2  \n-1.1457814415224265E-4 1.28E-5 1.0  \n",
+        )
+        .unwrap();
         assert!((b.0[2][0] + 1.1457814415224265e-4).abs() < 1e-15);
         assert!(Homography::parse("1 2 3").is_err());
         assert!(Homography::parse("1 0 0 0 1 0 0 0 x").is_err());
@@ -212,7 +216,14 @@ mod tests {
         assert_eq!((r.correspondences, r.n1, r.n2), (2, 4, 3));
         assert!((r.rate - 2.0 / 3.0).abs() < 1e-12);
         // r0 is strict and a shift of 5 px is out of reach.
-        let r = repeatability(&[[10.0, 10.0]], size, &[[15.0, 10.0]], size, &Homography::IDENTITY, 5.0);
+        let r = repeatability(
+            &[[10.0, 10.0]],
+            size,
+            &[[15.0, 10.0]],
+            size,
+            &Homography::IDENTITY,
+            5.0,
+        );
         assert_eq!(r.correspondences, 0);
     }
 

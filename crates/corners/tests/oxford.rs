@@ -12,7 +12,10 @@ fn data_dir() -> Option<PathBuf> {
     if d.is_dir() {
         Some(d)
     } else {
-        eprintln!("skipping: {} not found (Oxford affine sequences)", d.display());
+        eprintln!(
+            "skipping: {} not found (Oxford affine sequences)",
+            d.display()
+        );
         None
     }
 }
@@ -37,7 +40,13 @@ fn shift(dx: f64, dy: f64) -> Homography {
 
 /// Repeatability of img1 → img`k` of `seq` on a `size` crop of img1 at (x0, y0) and the crop of
 /// img`k` centred on the mapped centre.
-fn crop_pair(seq: &str, k: usize, x0: usize, y0: usize, size: usize) -> Option<(f64, usize, usize)> {
+fn crop_pair(
+    seq: &str,
+    k: usize,
+    x0: usize,
+    y0: usize,
+    size: usize,
+) -> Option<(f64, usize, usize)> {
     let dir = data_dir()?.join(seq);
     let load = |name: &str| {
         let img = image::open(dir.join(name)).expect("readable Oxford image");
@@ -49,13 +58,24 @@ fn crop_pair(seq: &str, k: usize, x0: usize, y0: usize, size: usize) -> Option<(
         .unwrap();
     let half = size as f64 / 2.0;
     let c = h.apply([x0 as f64 + half, y0 as f64 + half]).unwrap();
-    let (xk, yk) = ((c[0] - half).round() as usize, (c[1] - half).round() as usize);
+    let (xk, yk) = (
+        (c[0] - half).round() as usize,
+        (c[1] - half).round() as usize,
+    );
     let (a, b) = (crop(&g1, x0, y0, size, size), crop(&gk, xk, yk, size, size));
     // Crop coordinates: H' = T(−o_k) · H · T(o_1).
-    let hc = mul(&shift(-(xk as f64), -(yk as f64)), &mul(&h, &shift(x0 as f64, y0 as f64)));
+    let hc = mul(
+        &shift(-(xk as f64), -(yk as f64)),
+        &mul(&h, &shift(x0 as f64, y0 as f64)),
+    );
     let p = Params::default();
     let pts = |g: &Gray| -> Vec<[f64; 2]> {
-        detect(g, &p).unwrap().corners.iter().map(|c| [c.x, c.y]).collect()
+        detect(g, &p)
+            .unwrap()
+            .corners
+            .iter()
+            .map(|c| [c.x, c.y])
+            .collect()
     };
     let (pa, pb) = (pts(&a), pts(&b));
     let r = repeatability(&pa, (size, size), &pb, (size, size), &hc, 5.0);

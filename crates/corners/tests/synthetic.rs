@@ -92,7 +92,10 @@ fn scene(seed: u64, cells: usize, cell: usize, blur: f64, noise: f64) -> Scene {
     }
     let mut img = Gray::new(size, size, data);
     if blur > 0.0 {
-        img = smooth(&img, &gaussian_kernel(2 * (3.0 * blur).ceil() as usize + 1, blur));
+        img = smooth(
+            &img,
+            &gaussian_kernel(2 * (3.0 * blur).ceil() as usize + 1, blur),
+        );
     }
     for v in img.data.iter_mut() {
         // Box–Muller.
@@ -128,7 +131,11 @@ fn score(found: &[[f64; 2]], truth: &[[f64; 2]], radius: f64) -> Score {
         .count();
     Score {
         recall: errors.len() as f64 / truth.len() as f64,
-        precision: if found.is_empty() { 0.0 } else { true_pos as f64 / found.len() as f64 },
+        precision: if found.is_empty() {
+            0.0
+        } else {
+            true_pos as f64 / found.len() as f64
+        },
         mean_error: errors.iter().sum::<f64>() / errors.len().max(1) as f64,
         max_error: errors.iter().copied().fold(0.0, f64::max),
     }
@@ -181,7 +188,9 @@ fn asymptotes_follow_the_sides() {
     let sides: Vec<f64> = (0..4)
         .map(|i| {
             let (a, b) = (s.truth[i], s.truth[(i + 1) % 4]);
-            (b[1] - a[1]).atan2(b[0] - a[0]).rem_euclid(std::f64::consts::PI)
+            (b[1] - a[1])
+                .atan2(b[0] - a[0])
+                .rem_euclid(std::f64::consts::PI)
         })
         .collect();
     assert!(!found.corners.is_empty());
@@ -195,7 +204,10 @@ fn asymptotes_follow_the_sides() {
                     d.min(std::f64::consts::PI - d)
                 })
                 .fold(f64::MAX, f64::min);
-            assert!(err < 5f64.to_radians(), "direction {ang} vs sides {sides:?}");
+            assert!(
+                err < 5f64.to_radians(),
+                "direction {ang} vs sides {sides:?}"
+            );
         }
     }
 }
@@ -212,7 +224,9 @@ fn bad_inputs_give_empty_results() {
     let flat = Gray::new(s.img.width, s.img.height, vec![128.0; s.img.data.len()]);
     assert!(detect(&flat, &p).unwrap().corners.is_empty());
     // 16-bit and RGBA images convert to the same grey.
-    let g8 = image::GrayImage::from_fn(40, 40, |x, y| image::Luma([if x > 15 && y > 15 { 200 } else { 30 }]));
+    let g8 = image::GrayImage::from_fn(40, 40, |x, y| {
+        image::Luma([if x > 15 && y > 15 { 200 } else { 30 }])
+    });
     let d8 = image::DynamicImage::ImageLuma8(g8.clone());
     let d16 = image::DynamicImage::ImageLuma16(image::ImageBuffer::from_fn(40, 40, |x, y| {
         image::Luma([g8.get_pixel(x, y)[0] as u16 * 257])
@@ -225,6 +239,9 @@ fn bad_inputs_give_empty_results() {
         assert_eq!(b.corners.len(), 1);
         // Rounding differs in the last bits, which may move a thinned edge point.
         let (ca, cb) = (&a.corners[0], &b.corners[0]);
-        assert!((ca.x - cb.x).abs() < 0.3 && (ca.y - cb.y).abs() < 0.3, "{ca:?} vs {cb:?}");
+        assert!(
+            (ca.x - cb.x).abs() < 0.3 && (ca.y - cb.y).abs() < 0.3,
+            "{ca:?} vs {cb:?}"
+        );
     }
 }
