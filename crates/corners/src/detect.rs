@@ -237,6 +237,11 @@ impl WindowSums {
 fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> {
     let mut q = fit_hyperbola(pts, r.max(1.0))?;
     let mut h = Asymptotes::of(&q)?;
+    // Speed-up: a first corner more than a window away from the window is not brought back
+    // inside by discarding outliers, so the refit is not tried.
+    if h.s[0].abs() > 2.0 * r || h.s[1].abs() > 2.0 * r {
+        return None;
+    }
     if params.refit {
         let d = params.refit_distance;
         let before = pts.len();
