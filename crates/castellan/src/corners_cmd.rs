@@ -46,7 +46,7 @@ pub fn run(args: &CornersArgs) -> Result<()> {
     let mut outputs = Outputs::default();
     outputs.add(&args.output, serde_json::to_vec_pretty(&found)?);
     if let Some(path) = &args.overlay {
-        let img = corners::draw::overlay(&gray, &found.corners, (params.window / 2) as f64, 1.0);
+        let img = corners::draw::overlay(&gray, &found.corners, params.window as f64, 1.0);
         outputs.add(path, png_bytes(&img, path)?);
     }
     outputs.commit()?;
@@ -138,7 +138,7 @@ fn evaluate_sequence(
             overlay = Some(corners::draw::overlay(
                 g,
                 &found.corners,
-                (params.window / 2) as f64,
+                params.window as f64,
                 scale,
             ));
         }

@@ -104,7 +104,8 @@ pub struct Corner {
     /// Position in pixels (x right, y down, pixel centres at integers).
     pub x: f64,
     pub y: f64,
-    /// Unit directions of the two asymptotes (as lines: the sign is arbitrary).
+    /// Unit directions of the two asymptotes, each pointing from the corner along its edge
+    /// (towards most of the edge points on that line).
     pub directions: [[f64; 2]; 2],
     /// Mean distance (px) of the inlier edge points to their asymptote.
     pub epsilon: f64,
@@ -181,6 +182,10 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
                             pts.push([
                                 (xx - x as isize) as f64 + o[0] as f64,
                                 (yy - y as isize) as f64 + o[1] as f64,
+                                // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared
+                                // gradient magnitude, so we weight by E itself (over its mean,
+                                // which leaves the fit unchanged) rather than by its square,
+                                // which would let a few strong pixels decide the fit.
                                 (m / edges.mean) as f64,
                             ]);
                         }
@@ -266,7 +271,11 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
     }
     // §2.1.4: split the points between the asymptotes by proximity; L₁, L₂ hold those within
     // the outlier distance, ε is their mean distance.
+    // §2.1.4 writes ε as a sum but describes it as the average distance; we take the mean, so
+    // the 0.5 px bound does not depend on how many points the window holds.
     let (mut n1, mut n2, mut sum) = (0usize, 0usize, 0.0);
+    // Signed extent of each line's inliers along its direction, to orient the directions.
+    let mut along = [0.0f64; 2];
     for p in pts.iter() {
         let (d1, d2) = (h.distance(0, p[0], p[1]), h.distance(1, p[0], p[1]));
         let d = d1.min(d2);
@@ -274,10 +283,19 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
             continue;
         }
         sum += d;
-        if d1 <= d2 {
+        let i = if d1 <= d2 { 0 } else { 1 };
+        if i == 0 {
             n1 += 1;
         } else {
             n2 += 1;
+        }
+        along[i] += (p[0] - h.s[0]) * h.v[i][0] + (p[1] - h.s[1]) * h.v[i][1];
+    }
+    // Each direction points from the corner along its edge (towards most of that line's
+    // points): for an L-corner, the two arms.
+    for (v, a) in h.v.iter_mut().zip(along) {
+        if a < 0.0 {
+            *v = [-v[0], -v[1]];
         }
     }
     if n1 + n2 < 5 {
@@ -384,6 +402,12 @@ mod tests {
                 "ψ {}",
                 k.psi
             );
+            // Both arms run along the square's sides, away from the corner.
+            for v in k.directions {
+                let inward = v[0] * (31.5 - k.x) + v[1] * (31.5 - k.y);
+                assert!(inward > 0.0, "{:?} at ({}, {})", v, k.x, k.y);
+                assert!(v[0].abs() > 0.99 || v[1].abs() > 0.99, "{v:?}");
+            }
         }
     }
 

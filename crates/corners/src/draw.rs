@@ -20,8 +20,8 @@ pub const PALETTE: [[u8; 3]; 8] = [
     [200, 80, 160],
 ];
 
-/// The image, dimmed to grey, with each corner as a red circle and its two asymptotes as
-/// yellow and cyan segments of `arm` pixels from the corner. `scale` resizes the output (e.g.
+/// The image, dimmed to grey, with each corner as a red circle and its two asymptote
+/// directions as yellow and cyan arms of `arm` pixels from the corner. `scale` resizes the output (e.g.
 /// 0.5 for documentation figures); positions are scaled with it.
 pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage {
     let scale = if scale > 0.0 && scale.is_finite() {
@@ -45,9 +45,9 @@ pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage
     for c in corners {
         let (cx, cy) = ((c.x * scale) as f32, (c.y * scale) as f32);
         for (v, col) in c.directions.iter().zip(colours) {
-            // The corner's arms point into its opening; the asymptote is drawn on both sides.
+            // Directions point from the corner along its edges: draw the two arms.
             let (dx, dy) = ((v[0] * arm * scale) as f32, (v[1] * arm * scale) as f32);
-            draw_line_segment_mut(&mut out, (cx - dx, cy - dy), (cx + dx, cy + dy), col);
+            draw_line_segment_mut(&mut out, (cx, cy), (cx + dx, cy + dy), col);
         }
         let r = (3.0 * scale.max(0.5)).round() as i32;
         draw_hollow_circle_mut(
@@ -301,6 +301,8 @@ mod tests {
         assert_eq!(out.get_pixel(28, 20), &Rgb([255, 230, 0]));
         assert_eq!(out.get_pixel(20, 28), &Rgb([0, 230, 255]));
         assert_eq!(out.get_pixel(35, 35), &Rgb([120, 120, 120]));
+        // Arms only: nothing on the far side of the corner.
+        assert_eq!(out.get_pixel(12, 20), &Rgb([120, 120, 120]));
         assert_eq!(overlay(&img, &[], 10.0, 0.5).dimensions(), (20, 20));
     }
 
