@@ -88,25 +88,42 @@ pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
         return None;
     }
     let s = 1.0 / scale;
-    // Scatter S = MᵗM, accumulated in its 21 distinct entries.
-    let mut m = [[0.0f64; 6]; 6];
+    // Scatter S = MᵗM: its entries are the 15 weighted moments Σ w² xᵃ yᵇ with a + b ≤ 4.
+    let mut mo = [0.0f64; 15];
     for p in points {
-        let (x, y, w) = (p[0] * s, p[1] * s, p[2]);
-        let row = [x * x, x * y, y * y, x, y, 1.0];
-        let w2 = w * w;
-        for i in 0..6 {
-            let ri = row[i] * w2;
-            for j in i..6 {
-                m[i][j] += ri * row[j];
-            }
+        let (x, y, w2) = (p[0] * s, p[1] * s, p[2] * p[2]);
+        let (x2, y2, xy) = (x * x, y * y, x * y);
+        let terms = [
+            1.0,
+            x,
+            y,
+            x2,
+            xy,
+            y2,
+            x2 * x,
+            x2 * y,
+            x * y2,
+            y2 * y,
+            x2 * x2,
+            x2 * xy,
+            x2 * y2,
+            xy * y2,
+            y2 * y2,
+        ];
+        for (m, t) in mo.iter_mut().zip(terms) {
+            *m += w2 * t;
         }
     }
-    #[allow(clippy::needless_range_loop)] // mirror the upper triangle
-    for i in 0..6 {
-        for j in 0..i {
-            m[i][j] = m[j][i];
-        }
-    }
+    // Moment index of xᵃ yᵇ.
+    let idx = |a: usize, b: usize| {
+        let d = a + b;
+        d * (d + 1) / 2 + b
+    };
+    // Exponents of the monomials [x², xy, y², x, y, 1].
+    const EXP: [(usize, usize); 6] = [(2, 0), (1, 1), (0, 2), (1, 0), (0, 1), (0, 0)];
+    let m: [[f64; 6]; 6] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| mo[idx(EXP[i].0 + EXP[j].0, EXP[i].1 + EXP[j].1)])
+    });
     let blk = |r0: usize, c0: usize| Matrix3::from_fn(|i, j| m[r0 + i][c0 + j]);
     let s1 = blk(0, 0);
     let s2 = blk(0, 3);
