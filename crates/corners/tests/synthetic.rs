@@ -245,3 +245,48 @@ fn bad_inputs_give_empty_results() {
         );
     }
 }
+
+/// A `side` × `side` square centred in a `size` image, turned by `angle`, 4 × 4 anti-aliased.
+fn turned_square(size: usize, side: f64, angle: f64) -> Gray {
+    let c = size as f64 / 2.0;
+    let (sn, cs) = angle.sin_cos();
+    let h = side / 2.0;
+    let poly: Poly = [(-h, -h), (h, -h), (h, h), (-h, h)]
+        .iter()
+        .map(|&(x, y)| [c + cs * x - sn * y, c + sn * x + cs * y])
+        .collect();
+    let data = (0..size * size)
+        .map(|i| {
+            let (x, y) = ((i % size) as f64, (i / size) as f64);
+            let mut cov = 0;
+            for sy in 0..4 {
+                for sx in 0..4 {
+                    let (px, py) = (x - 0.375 + sx as f64 * 0.25, y - 0.375 + sy as f64 * 0.25);
+                    cov += inside(&poly, px, py) as u32;
+                }
+            }
+            40.0 + 160.0 * cov as f32 / 16.0
+        })
+        .collect();
+    Gray::new(size, size, data)
+}
+
+#[test]
+fn rectified_mode_keeps_only_axis_aligned_corners() {
+    let rectified = Params {
+        rectified: true,
+        ..Params::default()
+    };
+    let straight = turned_square(80, 36.0, 3f64.to_radians());
+    let turned = turned_square(80, 36.0, 30f64.to_radians());
+    assert_eq!(
+        detect(&straight, &Params::default()).unwrap().corners.len(),
+        4
+    );
+    assert_eq!(
+        detect(&turned, &Params::default()).unwrap().corners.len(),
+        4
+    );
+    assert_eq!(detect(&straight, &rectified).unwrap().corners.len(), 4);
+    assert_eq!(detect(&turned, &rectified).unwrap().corners.len(), 0);
+}
