@@ -147,23 +147,43 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
         return Vec::new();
     }
     let sums = WindowSums::new(edges);
+    // Edge points row by row (x, sub-pixel x, sub-pixel y, weight), so a window gathers its
+    // points without scanning its empty pixels.
+    let rows: Vec<Vec<(isize, [f64; 3])>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            (0..w)
+                .filter(|&x| edges.mag[y * w + x] > 0.0)
+                .map(|x| {
+                    let i = y * w + x;
+                    let o = edges.offset[i];
+                    (
+                        x as isize,
+                        [
+                            x as f64 + o[0] as f64,
+                            y as f64 + o[1] as f64,
+                            // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared gradient
+                            // magnitude, so we weight by E itself (over its mean, which leaves
+                            // the fit unchanged) rather than by its square, which would let a
+                            // few strong pixels decide the fit.
+                            (edges.mag[i] / edges.mean) as f64,
+                        ],
+                    )
+                })
+                .collect()
+        })
+        .collect();
     (0..h)
         .into_par_iter()
         .flat_map_iter(|y| {
             let mut pts: Vec<[f64; 3]> = Vec::with_capacity(params.window * params.window);
             let mut out = Vec::new();
-            for x in 0..w {
-                if edges.mag[y * w + x] <= 0.0 {
-                    continue;
-                }
+            for &(x, _) in &rows[y] {
                 let (y0, y1) = (
                     (y as isize - r).max(0),
                     (y as isize + r).min(h as isize - 1),
                 );
-                let (x0, x1) = (
-                    (x as isize - r).max(0),
-                    (x as isize + r).min(w as isize - 1),
-                );
+                let (x0, x1) = ((x - r).max(0), (x + r).min(w as isize - 1));
                 let [n, c2, s2] = sums.sum(x0 as usize, y0 as usize, x1 as usize, y1 as usize);
                 // §2.1.2: fewer than W edge points in the window is a short or noisy contour.
                 if n < params.window as f64 - 0.5 {
@@ -173,24 +193,14 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
                     continue;
                 }
                 pts.clear();
-                for yy in y0..=y1 {
-                    let row = yy as usize * w;
-                    for xx in x0..=x1 {
-                        let m = edges.mag[row + xx as usize];
-                        if m > 0.0 {
-                            let o = edges.offset[row + xx as usize];
-                            pts.push([
-                                (xx - x as isize) as f64 + o[0] as f64,
-                                (yy - y as isize) as f64 + o[1] as f64,
-                                // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared
-                                // gradient magnitude, so we weight by E itself (over its mean,
-                                // which leaves the fit unchanged) rather than by its square,
-                                // which would let a few strong pixels decide the fit.
-                                (m / edges.mean) as f64,
-                            ]);
-                        }
+                let (cx, cy) = (x as f64, y as f64);
+                for row in &rows[y0 as usize..=y1 as usize] {
+                    let start = row.partition_point(|p| p.0 < x0);
+                    for &(_, p) in row[start..].iter().take_while(|p| p.0 <= x1) {
+                        pts.push([p[0] - cx, p[1] - cy, p[2]]);
                     }
                 }
+                let x = x as usize;
                 if let Some(mut c) = evaluate(&mut pts, r as f64, params) {
                     c.x += x as f64;
                     c.y += y as f64;
