@@ -2,6 +2,7 @@
 //! library crates and writes outputs atomically; the work itself lives in the libraries.
 
 mod cli;
+mod corners_cmd;
 mod output;
 mod vsg_cmd;
 
@@ -13,6 +14,8 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
+        cli::Command::Corners(args) => corners_cmd::run(&args),
+        cli::Command::CornersEval(args) => corners_cmd::eval(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,372 @@
+//! `castellan corners` (ch. 2: CORNERS.json and an overlay) and `castellan corners-eval` (§2.2:
+//! modified repeatability and detections per image over Oxford-style sequences, for IPFIT and
+//! the peer detections written by `benches/corners_peers.py`).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow, bail};
+use corners::draw::{PALETTE, Series};
+use corners::repeat::{Homography, Repeatability, repeatability};
+use corners::{Gray, Params};
+use serde::Deserialize;
+
+use crate::cli::{CornersArgs, CornersEvalArgs};
+use crate::output::Outputs;
+
+/// Reads any supported image as grey, naming the file in every error.
+fn read_gray(path: &Path) -> Result<Gray> {
+    let name = path.display();
+    let img = image::ImageReader::open(path)
+        .with_context(|| format!("cannot read {name}"))?
+        .with_guessed_format()
+        .with_context(|| format!("cannot read {name}"))?
+        .decode()
+        .map_err(|e| anyhow!("{name}: not a readable image ({e})"))?;
+    Ok(Gray::from_dynamic(&img))
+}
+
+fn png_bytes(img: &image::RgbImage, path: &Path) -> Result<Vec<u8>> {
+    let mut buf = Cursor::new(Vec::new());
+    img.write_to(&mut buf, image::ImageFormat::Png)
+        .with_context(|| format!("cannot encode {}", path.display()))?;
+    Ok(buf.into_inner())
+}
+
+pub fn run(args: &CornersArgs) -> Result<()> {
+    let file = args.image.display().to_string();
+    let gray = read_gray(&args.image)?;
+    let params = args.detector.params();
+    let started = Instant::now();
+    let found = corners::detect(&gray, &params).map_err(|e| anyhow!("{file}: {e}"))?;
+    let took = started.elapsed();
+    let mut outputs = Outputs::default();
+    outputs.add(&args.output, serde_json::to_vec_pretty(&found)?);
+    if let Some(path) = &args.overlay {
+        let img = corners::draw::overlay(&gray, &found.corners, params.window as f64, 1.0);
+        outputs.add(path, png_bytes(&img, path)?);
+    }
+    outputs.commit()?;
+    eprintln!(
+        "{file}: {} corners in {}×{} px, {:.1} ms; written to {}",
+        found.corners.len(),
+        found.width,
+        found.height,
+        took.as_secs_f64() * 1e3,
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// Peer detections of one sequence (`benches/corners_peers.py`).
+#[derive(Debug, Deserialize)]
+struct PeerFile {
+    /// Detector name → per image (img1, img2, ...) a list of [x, y].
+    detectors: BTreeMap<String, Vec<Vec<[f64; 2]>>>,
+    /// Detector name → per image milliseconds (optional).
+    #[serde(default)]
+    time_ms: BTreeMap<String, Vec<f64>>,
+}
+
+/// One detector's results over one sequence.
+struct Run {
+    name: String,
+    points: Vec<Vec<[f64; 2]>>,
+    time_ms: Vec<f64>,
+}
+
+struct Sequence {
+    name: String,
+    sizes: Vec<(usize, usize)>,
+    runs: Vec<Run>,
+    /// Per run, for images 2..=n: the repeatability against image 1.
+    rates: Vec<Vec<Repeatability>>,
+    overlay: Option<image::RgbImage>,
+}
+
+fn find_image(dir: &Path, k: usize) -> Option<PathBuf> {
+    ["ppm", "pgm", "png", "jpg", "jpeg", "pnm"]
+        .iter()
+        .map(|ext| dir.join(format!("img{k}.{ext}")))
+        .find(|p| p.is_file())
+}
+
+fn evaluate_sequence(
+    dir: &Path,
+    args: &CornersEvalArgs,
+    params: &Params,
+    pool: &rayon::ThreadPool,
+) -> Result<Sequence> {
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| dir.display().to_string());
+    let paths: Vec<PathBuf> = (1..).map_while(|k| find_image(dir, k)).collect();
+    if paths.len() < 2 {
+        bail!(
+            "{}: expected img1, img2, ... (.ppm/.pgm/.png/.jpg) in the folder",
+            dir.display()
+        );
+    }
+    let mut homographies = Vec::new();
+    for k in 2..=paths.len() {
+        let p = dir.join(format!("H1to{k}p"));
+        let text =
+            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        homographies.push(Homography::parse(&text).map_err(|e| anyhow!("{}: {e}", p.display()))?);
+    }
+    let grays: Vec<Gray> = paths.iter().map(|p| read_gray(p)).collect::<Result<_>>()?;
+    let sizes: Vec<(usize, usize)> = grays.iter().map(|g| (g.width, g.height)).collect();
+    let mut ipfit = Run {
+        name: "IPFIT".into(),
+        points: Vec::new(),
+        time_ms: Vec::new(),
+    };
+    let mut overlay = None;
+    for (g, p) in grays.iter().zip(&paths) {
+        let started = Instant::now();
+        let found = pool
+            .install(|| corners::detect(g, params))
+            .map_err(|e| anyhow!("{}: {e}", p.display()))?;
+        ipfit.time_ms.push(started.elapsed().as_secs_f64() * 1e3);
+        if overlay.is_none()
+            && let Some(scale) = args.overlays
+        {
+            overlay = Some(corners::draw::overlay(
+                g,
+                &found.corners,
+                params.window as f64,
+                scale,
+            ));
+        }
+        ipfit
+            .points
+            .push(found.corners.iter().map(|c| [c.x, c.y]).collect());
+    }
+    let mut runs = vec![ipfit];
+    if let Some(peer_dir) = &args.peers {
+        let p = peer_dir.join(format!("{name}.json"));
+        let text =
+            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        let peers: PeerFile = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a peer file", p.display()))?;
+        for (det, points) in peers.detectors {
+            if points.len() != paths.len() {
+                bail!(
+                    "{}: {det} has {} images, the sequence {}",
+                    p.display(),
+                    points.len(),
+                    paths.len()
+                );
+            }
+            let time_ms = peers.time_ms.get(&det).cloned().unwrap_or_default();
+            runs.push(Run {
+                name: det,
+                points,
+                time_ms,
+            });
+        }
+    }
+    let rates = runs
+        .iter()
+        .map(|run| {
+            homographies
+                .iter()
+                .enumerate()
+                .map(|(i, h)| {
+                    repeatability(
+                        &run.points[0],
+                        sizes[0],
+                        &run.points[i + 1],
+                        sizes[i + 1],
+                        h,
+                        args.r0,
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    Ok(Sequence {
+        name,
+        sizes,
+        runs,
+        rates,
+        overlay,
+    })
+}
+
+fn mean(v: impl IntoIterator<Item = f64>) -> f64 {
+    let (s, n) = v
+        .into_iter()
+        .fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    if n == 0 { f64::NAN } else { s / n as f64 }
+}
+
+fn csv(seqs: &[Sequence]) -> String {
+    let mut out = String::from(
+        "sequence,detector,image,width,height,detections,time_ms,n1,n2,correspondences,repeatability\n",
+    );
+    for s in seqs {
+        for (run, rates) in s.runs.iter().zip(&s.rates) {
+            for (i, pts) in run.points.iter().enumerate() {
+                let t = run
+                    .time_ms
+                    .get(i)
+                    .map(|t| format!("{t:.2}"))
+                    .unwrap_or_default();
+                let r = if i == 0 {
+                    ",,,".to_string()
+                } else {
+                    let r = &rates[i - 1];
+                    format!("{},{},{},{:.4}", r.n1, r.n2, r.correspondences, r.rate)
+                };
+                let _ = writeln!(
+                    out,
+                    "{},{},{},{},{},{},{t},{r}",
+                    s.name,
+                    run.name,
+                    i + 1,
+                    s.sizes[i].0,
+                    s.sizes[i].1,
+                    pts.len()
+                );
+            }
+        }
+    }
+    out
+}
+
+fn markdown(seqs: &[Sequence], r0: f64, threads: usize) -> String {
+    let mut md = format!(
+        "# Structural corners: modified repeatability (§2.2, r0 = {r0} px)\n\n\
+         Written by `castellan corners-eval`. Repeatability of image 1 against image k counts \
+         1-to-1 mutual nearest neighbours over the region both images see; `det/img` is the mean \
+         number of detections per image; `ms/img` the mean detection time per image \
+         (IPFIT on {} thread(s); peers as timed by `benches/corners_peers.py`).\n",
+        if threads == 0 {
+            "all".to_string()
+        } else {
+            threads.to_string()
+        }
+    );
+    let mut names: Vec<String> = Vec::new();
+    for s in seqs {
+        for r in &s.runs {
+            if !names.contains(&r.name) {
+                names.push(r.name.clone());
+            }
+        }
+    }
+    md.push_str("\n## Mean repeatability over images 2–6, per sequence\n\n| sequence |");
+    for n in &names {
+        let _ = write!(md, " {n} |");
+    }
+    md.push_str("\n| --- |");
+    md.push_str(&" ---: |".repeat(names.len()));
+    md.push('\n');
+    for s in seqs {
+        let _ = write!(md, "| {} |", s.name);
+        for n in &names {
+            match s.runs.iter().position(|r| &r.name == n) {
+                Some(k) => {
+                    let _ = write!(md, " {:.3} |", mean(s.rates[k].iter().map(|r| r.rate)));
+                }
+                None => md.push_str(" – |"),
+            }
+        }
+        md.push('\n');
+    }
+    for s in seqs {
+        let n = s.sizes.len();
+        let _ = write!(md, "\n## {}\n\n| detector |", s.name);
+        for k in 2..=n {
+            let _ = write!(md, " 1→{k} |");
+        }
+        md.push_str(" det/img | ms/img |\n| --- |");
+        md.push_str(&" ---: |".repeat(n + 1));
+        md.push('\n');
+        for (run, rates) in s.runs.iter().zip(&s.rates) {
+            let _ = write!(md, "| {} |", run.name);
+            for r in rates {
+                let _ = write!(md, " {:.3} |", r.rate);
+            }
+            let det = mean(run.points.iter().map(|p| p.len() as f64));
+            let t = mean(run.time_ms.iter().copied());
+            let t = if t.is_nan() {
+                "–".to_string()
+            } else {
+                format!("{t:.1}")
+            };
+            let _ = writeln!(md, " {det:.0} | {t} |");
+        }
+        let t = |name: &str| {
+            s.runs
+                .iter()
+                .find(|r| r.name.eq_ignore_ascii_case(name))
+                .map(|r| mean(r.time_ms.iter().copied()))
+                .filter(|t| t.is_finite() && *t > 0.0)
+        };
+        if let (Some(a), Some(b)) = (t("IPFIT"), t("Harris")) {
+            let _ = writeln!(md, "\nIPFIT / Harris time: {:.2}×", a / b);
+        }
+    }
+    md
+}
+
+pub fn eval(args: &CornersEvalArgs) -> Result<()> {
+    let params = args.detector.params();
+    params.validate().map_err(|e| anyhow!("{e}"))?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .context("cannot start worker threads")?;
+    let mut seqs = Vec::new();
+    for dir in &args.sequences {
+        let s = evaluate_sequence(dir, args, &params, &pool)?;
+        eprintln!(
+            "{}: IPFIT {:.0} detections/image, mean repeatability {:.3}",
+            s.name,
+            mean(s.runs[0].points.iter().map(|p| p.len() as f64)),
+            mean(s.rates[0].iter().map(|r| r.rate))
+        );
+        seqs.push(s);
+    }
+    let mut outputs = Outputs::default();
+    outputs.add(
+        &args.output.join("repeatability.csv"),
+        csv(&seqs).into_bytes(),
+    );
+    outputs.add(
+        &args.output.join("repeatability.md"),
+        markdown(&seqs, args.r0, args.threads).into_bytes(),
+    );
+    for s in &seqs {
+        let series: Vec<Series> = s
+            .runs
+            .iter()
+            .zip(&s.rates)
+            .enumerate()
+            .map(|(i, (run, rates))| Series {
+                name: run.name.clone(),
+                color: PALETTE[i % PALETTE.len()],
+                repeatability: rates.iter().map(|r| r.rate).collect(),
+                detections: run.points.iter().map(|p| p.len() as f64).collect(),
+            })
+            .collect();
+        let path = args.output.join(format!("{}.png", s.name));
+        outputs.add(
+            &path,
+            png_bytes(&corners::draw::plot(&s.name, &series), &path)?,
+        );
+        if let Some(img) = &s.overlay {
+            let path = args.output.join(format!("{}_overlay.png", s.name));
+            outputs.add(&path, png_bytes(img, &path)?);
+        }
+    }
+    outputs.commit()?;
+    eprintln!("written to {}", args.output.display());
+    Ok(())
+}

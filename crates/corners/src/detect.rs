@@ -1,0 +1,463 @@
+//! The detector of §2.1: for each edge point of Ê a hyperbola fit in its W × W window (§2.1.2),
+//! corner and asymptotes (§2.1.3), the features Φ = (ε, λ, Δ, ψ) (§2.1.4), the thresholds and
+//! the non-minimum suppression of Δ (§2.1.5). Rows of the image run in parallel (rayon).
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::edge::{EdgeMap, Gray, edge_map};
+use crate::fit::{Asymptotes, fit_hyperbola};
+
+/// Every parameter of the detector. Defaults are those of §2.1 except where noted.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Params {
+    /// Window side W (odd): Gaussian support, fit window, minimum edge count, suppression
+    /// window. §2.1.1: 13.
+    pub window: usize,
+    /// Gaussian σ of §2.1.1: 1.4.
+    pub sigma: f64,
+    /// Upper bound on ε, the mean distance (px) of the edge points to their nearest asymptote
+    /// (§2.1.5: 0.5).
+    pub max_epsilon: f64,
+    /// Bounds on λ = card(L₁)/(card(L₁) + card(L₂)) (§2.1.5: 0.3 < λ < 0.7).
+    pub lambda_range: (f64, f64),
+    /// Upper bound on Δ in our normalisation (b² − 4ac = 1, pixel units; see [`crate::fit`] and
+    /// the crate docs). Δ = g² tan ψ / 8 for a hyperbola whose vertex lies g pixels from the
+    /// corner, so 0.25 admits a rounding of about 1.4 px at 90°. §2.1.5's |Δ| < 10⁻⁶ was for
+    /// ‖α‖ = 1 in unstated coordinates, which makes Δ depend on where the window is.
+    pub max_delta: f64,
+    /// Bounds on ψ, half the corner's opening angle (§2.1.5: 0.2 < ψ < 1.3 rad).
+    pub psi_range: (f64, f64),
+    /// Refit without the edge points farther than `refit_distance` from both asymptotes
+    /// (§2.1.3's optional step, on by default as in the text's results).
+    pub refit: bool,
+    /// Outlier distance of the refit and of the inlier sets L₁, L₂ (§2.1.3: 1 px).
+    pub refit_distance: f64,
+    /// Place edge points to a fraction of a pixel along the gradient (departure from §2.1.1,
+    /// which keeps integer positions; it sharpens the corner position).
+    pub subpixel: bool,
+    /// Rectified images (§2 intro): keep only corners with one horizontal and one vertical
+    /// asymptote, each within `rectified_tolerance` radians.
+    pub rectified: bool,
+    pub rectified_tolerance: f64,
+    /// Speed-up, not in §2.1: skip the fit when the gradient orientations of the window's edge
+    /// points agree too well — mean resultant length of the doubled angles above this — since
+    /// then they lie on one straight contour. Two lines holding shares p and 1 − p of the points
+    /// at an angle φ give √(1 − 4p(1 − p) sin²φ); at the bounds of §2.1.5 (p = 0.3, φ = 0.4 rad)
+    /// that is 0.934. Windows also hold points off both lines, so 0.97 still drops some corners
+    /// the thresholds would keep (5–10 % on Oxford graf/bikes, all near-straight junctions),
+    /// which slightly raised repeatability there. 1 disables it.
+    pub max_coherence: f64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            window: 13,
+            sigma: 1.4,
+            max_epsilon: 0.5,
+            lambda_range: (0.3, 0.7),
+            max_delta: 0.25,
+            psi_range: (0.2, 1.3),
+            refit: true,
+            refit_distance: 1.0,
+            subpixel: true,
+            rectified: false,
+            rectified_tolerance: 10f64.to_radians(),
+            max_coherence: 0.97,
+        }
+    }
+}
+
+impl Params {
+    /// Checks ranges; the message names the parameter.
+    pub fn validate(&self) -> Result<(), crate::Error> {
+        let bad = |what: &str| Err(crate::Error::BadParam(what.to_string()));
+        if self.window < 3 || self.window % 2 == 0 || self.window > 101 {
+            return bad("window must be odd, from 3 to 101");
+        }
+        if !(self.sigma > 0.0 && self.sigma.is_finite()) {
+            return bad("sigma must be positive");
+        }
+        let finite = [
+            self.max_epsilon,
+            self.lambda_range.0,
+            self.lambda_range.1,
+            self.max_delta,
+            self.psi_range.0,
+            self.psi_range.1,
+            self.refit_distance,
+            self.rectified_tolerance,
+            self.max_coherence,
+        ];
+        if finite.iter().any(|v| !v.is_finite()) {
+            return bad("thresholds must be finite numbers");
+        }
+        Ok(())
+    }
+}
+
+/// One structural corner (the CORNERS.json record).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Corner {
+    /// Position in pixels (x right, y down, pixel centres at integers).
+    pub x: f64,
+    pub y: f64,
+    /// Unit directions of the two asymptotes, each pointing from the corner along its edge
+    /// (towards most of the edge points on that line).
+    pub directions: [[f64; 2]; 2],
+    /// Mean distance (px) of the inlier edge points to their asymptote.
+    pub epsilon: f64,
+    /// Share of the inliers on the first asymptote.
+    pub lambda: f64,
+    /// The algebraic shape parameter (eq. 2.9, normalised so b² − 4ac = 1; ≥ 0).
+    pub delta: f64,
+    /// Half the opening angle of the corner (rad).
+    pub psi: f64,
+}
+
+/// The detector's result for one image (CORNERS.json).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Corners {
+    pub width: usize,
+    pub height: usize,
+    pub corners: Vec<Corner>,
+}
+
+/// Runs §2.1 on a grey image. Images too small for a window, or without edges, give no
+/// corners.
+pub fn detect(img: &Gray, params: &Params) -> Result<Corners, crate::Error> {
+    params.validate()?;
+    let edges = edge_map(img, params.window, params.sigma, params.subpixel);
+    let candidates = candidates(&edges, params);
+    let corners = suppress(candidates, params.window);
+    Ok(Corners {
+        width: img.width,
+        height: img.height,
+        corners,
+    })
+}
+
+/// Every edge point's candidate corner that passes the thresholds of §2.1.5.
+pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
+    let (w, h) = (edges.width, edges.height);
+    let r = (params.window / 2) as isize;
+    if edges.mean <= 0.0 || w == 0 {
+        return Vec::new();
+    }
+    let sums = WindowSums::new(edges);
+    // Edge points row by row (x, sub-pixel x, sub-pixel y, weight), so a window gathers its
+    // points without scanning its empty pixels.
+    let rows: Vec<Vec<(isize, [f64; 3])>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            (0..w)
+                .filter(|&x| edges.mag[y * w + x] > 0.0)
+                .map(|x| {
+                    let i = y * w + x;
+                    let o = edges.offset[i];
+                    (
+                        x as isize,
+                        [
+                            x as f64 + o[0] as f64,
+                            y as f64 + o[1] as f64,
+                            // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared gradient
+                            // magnitude, so we weight by E itself (over its mean, which leaves
+                            // the fit unchanged) rather than by its square, which would let a
+                            // few strong pixels decide the fit.
+                            (edges.mag[i] / edges.mean) as f64,
+                        ],
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let mut pts: Vec<[f64; 3]> = Vec::with_capacity(params.window * params.window);
+            let mut out = Vec::new();
+            for &(x, _) in &rows[y] {
+                let (y0, y1) = (
+                    (y as isize - r).max(0),
+                    (y as isize + r).min(h as isize - 1),
+                );
+                let (x0, x1) = ((x - r).max(0), (x + r).min(w as isize - 1));
+                let [n, c2, s2] = sums.sum(x0 as usize, y0 as usize, x1 as usize, y1 as usize);
+                // §2.1.2: fewer than W edge points in the window is a short or noisy contour.
+                if n < params.window as f64 - 0.5 {
+                    continue;
+                }
+                if (c2 * c2 + s2 * s2).sqrt() > params.max_coherence * n {
+                    continue;
+                }
+                pts.clear();
+                let (cx, cy) = (x as f64, y as f64);
+                for row in &rows[y0 as usize..=y1 as usize] {
+                    let start = row.partition_point(|p| p.0 < x0);
+                    for &(_, p) in row[start..].iter().take_while(|p| p.0 <= x1) {
+                        pts.push([p[0] - cx, p[1] - cy, p[2]]);
+                    }
+                }
+                let x = x as usize;
+                if let Some(mut c) = evaluate(&mut pts, r as f64, params) {
+                    c.x += x as f64;
+                    c.y += y as f64;
+                    out.push(c);
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// Summed-area tables of (count, cos 2θ, sin 2θ) over the edge points, for O(1) window sums.
+struct WindowSums {
+    stride: usize,
+    table: Vec<[f64; 3]>,
+}
+
+impl WindowSums {
+    fn new(e: &EdgeMap) -> Self {
+        let stride = e.width + 1;
+        let mut table = vec![[0.0; 3]; stride * (e.height + 1)];
+        for y in 0..e.height {
+            let mut row = [0.0; 3];
+            for x in 0..e.width {
+                let i = y * e.width + x;
+                if e.mag[i] > 0.0 {
+                    row[0] += 1.0;
+                    row[1] += e.orient[i][0] as f64;
+                    row[2] += e.orient[i][1] as f64;
+                }
+                let above = table[y * stride + x + 1];
+                table[(y + 1) * stride + x + 1] =
+                    [above[0] + row[0], above[1] + row[1], above[2] + row[2]];
+            }
+        }
+        Self { stride, table }
+    }
+
+    /// Sums over x0..=x1, y0..=y1.
+    fn sum(&self, x0: usize, y0: usize, x1: usize, y1: usize) -> [f64; 3] {
+        let t = |x: usize, y: usize| self.table[y * self.stride + x];
+        let (a, b, c, d) = (t(x1 + 1, y1 + 1), t(x0, y1 + 1), t(x1 + 1, y0), t(x0, y0));
+        std::array::from_fn(|k| a[k] - b[k] - c[k] + d[k])
+    }
+}
+
+/// Fit, shape model, features and thresholds for the edge points of one window (coordinates
+/// relative to the window centre, `r` its half side). The point list may be reordered.
+fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> {
+    let mut q = fit_hyperbola(pts, r.max(1.0))?;
+    let mut h = Asymptotes::of(&q)?;
+    // Speed-up: a first corner more than a window away from the window is not brought back
+    // inside by discarding outliers, so the refit is not tried.
+    if h.s[0].abs() > 2.0 * r || h.s[1].abs() > 2.0 * r {
+        return None;
+    }
+    if params.refit {
+        let d = params.refit_distance;
+        let before = pts.len();
+        pts.retain(|p| h.distance(0, p[0], p[1]).min(h.distance(1, p[0], p[1])) <= d);
+        // Nothing discarded: the refit would return the same curve.
+        if pts.len() < before {
+            q = fit_hyperbola(pts, r.max(1.0))?;
+            h = Asymptotes::of(&q)?;
+        }
+    }
+    // Our addition: the corner must lie inside the window whose points it was fitted to; an
+    // intersection extrapolated beyond it is not supported by data.
+    if h.s[0].abs() > r || h.s[1].abs() > r {
+        return None;
+    }
+    let delta = q.delta();
+    if !(delta.abs() < params.max_delta) {
+        return None;
+    }
+    if !(h.psi > params.psi_range.0 && h.psi < params.psi_range.1) {
+        return None;
+    }
+    // §2.1.4: split the points between the asymptotes by proximity; L₁, L₂ hold those within
+    // the outlier distance, ε is their mean distance.
+    // §2.1.4 writes ε as a sum but describes it as the average distance; we take the mean, so
+    // the 0.5 px bound does not depend on how many points the window holds.
+    let (mut n1, mut n2, mut sum) = (0usize, 0usize, 0.0);
+    // Signed extent of each line's inliers along its direction, to orient the directions.
+    let mut along = [0.0f64; 2];
+    for p in pts.iter() {
+        let (d1, d2) = (h.distance(0, p[0], p[1]), h.distance(1, p[0], p[1]));
+        let d = d1.min(d2);
+        if d > params.refit_distance {
+            continue;
+        }
+        sum += d;
+        let i = if d1 <= d2 { 0 } else { 1 };
+        if i == 0 {
+            n1 += 1;
+        } else {
+            n2 += 1;
+        }
+        along[i] += (p[0] - h.s[0]) * h.v[i][0] + (p[1] - h.s[1]) * h.v[i][1];
+    }
+    // Each direction points from the corner along its edge (towards most of that line's
+    // points): for an L-corner, the two arms.
+    for (v, a) in h.v.iter_mut().zip(along) {
+        if a < 0.0 {
+            *v = [-v[0], -v[1]];
+        }
+    }
+    if n1 + n2 < 5 {
+        return None;
+    }
+    let epsilon = sum / (n1 + n2) as f64;
+    let lambda = n1 as f64 / (n1 + n2) as f64;
+    if !(epsilon < params.max_epsilon) {
+        return None;
+    }
+    if !(lambda > params.lambda_range.0 && lambda < params.lambda_range.1) {
+        return None;
+    }
+    if params.rectified {
+        let tol = params.rectified_tolerance.sin();
+        // One direction within tol of horizontal (|dy| small), the other of vertical.
+        let [v1, v2] = h.v;
+        let hv = v1[1].abs() < tol && v2[0].abs() < tol;
+        let vh = v2[1].abs() < tol && v1[0].abs() < tol;
+        if !(hv || vh) {
+            return None;
+        }
+    }
+    Some(Corner {
+        x: h.s[0],
+        y: h.s[1],
+        directions: h.v,
+        epsilon,
+        lambda,
+        delta,
+        psi: h.psi,
+    })
+}
+
+/// Non-minimum suppression of Δ (§2.1.5): a candidate survives when no candidate with a smaller
+/// |Δ| lies in the W × W window centred on it. Greedy over |Δ| ascending, with a grid of W-sized
+/// cells for the neighbour look-up.
+pub fn suppress(mut cands: Vec<Corner>, window: usize) -> Vec<Corner> {
+    cands.sort_by(|a, b| {
+        a.delta
+            .abs()
+            .total_cmp(&b.delta.abs())
+            .then(a.y.total_cmp(&b.y))
+            .then(a.x.total_cmp(&b.x))
+    });
+    let half = (window / 2) as f64;
+    let cell = window.max(1) as f64;
+    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> = Default::default();
+    let mut kept: Vec<Corner> = Vec::new();
+    for c in cands {
+        let (gx, gy) = ((c.x / cell).floor() as i64, (c.y / cell).floor() as i64);
+        let clash = (-1..=1).any(|dy| {
+            (-1..=1).any(|dx| {
+                grid.get(&(gx + dx, gy + dy)).is_some_and(|v| {
+                    v.iter().any(|&k| {
+                        (kept[k].x - c.x).abs() <= half && (kept[k].y - c.y).abs() <= half
+                    })
+                })
+            })
+        });
+        if !clash {
+            grid.entry((gx, gy)).or_default().push(kept.len());
+            kept.push(c);
+        }
+    }
+    kept.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
+    kept
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(w: usize, x0: usize, x1: usize) -> Gray {
+        let data = (0..w * w)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if (x0..x1).contains(&x) && (x0..x1).contains(&y) {
+                    200.0
+                } else {
+                    40.0
+                }
+            })
+            .collect();
+        Gray::new(w, w, data)
+    }
+
+    #[test]
+    fn a_bright_square_has_four_corners() {
+        // Square covering pixels 20..44: its outline runs at 19.5 and 43.5.
+        let c = detect(&square(64, 20, 44), &Params::default()).unwrap();
+        assert_eq!(c.corners.len(), 4, "{:#?}", c.corners);
+        for k in &c.corners {
+            let ex = if k.x < 32.0 { 19.5 } else { 43.5 };
+            let ey = if k.y < 32.0 { 19.5 } else { 43.5 };
+            assert!(
+                (k.x - ex).abs() < 1.0 && (k.y - ey).abs() < 1.0,
+                "corner at ({}, {})",
+                k.x,
+                k.y
+            );
+            assert!(
+                (k.psi - std::f64::consts::FRAC_PI_4).abs() < 0.15,
+                "ψ {}",
+                k.psi
+            );
+            // Both arms run along the square's sides, away from the corner.
+            for v in k.directions {
+                let inward = v[0] * (31.5 - k.x) + v[1] * (31.5 - k.y);
+                assert!(inward > 0.0, "{:?} at ({}, {})", v, k.x, k.y);
+                assert!(v[0].abs() > 0.99 || v[1].abs() > 0.99, "{v:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn rectified_mode_keeps_axis_aligned_corners() {
+        let p = Params {
+            rectified: true,
+            ..Params::default()
+        };
+        assert_eq!(detect(&square(64, 20, 44), &p).unwrap().corners.len(), 4);
+    }
+
+    #[test]
+    fn suppression_keeps_the_smallest_delta() {
+        let mk = |x: f64, delta: f64| Corner {
+            x,
+            y: 5.0,
+            directions: [[1.0, 0.0], [0.0, 1.0]],
+            epsilon: 0.1,
+            lambda: 0.5,
+            delta,
+            psi: 0.78,
+        };
+        let kept = suppress(vec![mk(10.0, 0.2), mk(12.0, 0.1), mk(30.0, 0.3)], 13);
+        let xs: Vec<f64> = kept.iter().map(|c| c.x).collect();
+        assert_eq!(xs, vec![12.0, 30.0]);
+    }
+
+    #[test]
+    fn bad_params_are_reported() {
+        let img = square(16, 4, 10);
+        let p = Params {
+            window: 4,
+            ..Params::default()
+        };
+        assert!(detect(&img, &p).is_err());
+        let p = Params {
+            sigma: f64::NAN,
+            ..Params::default()
+        };
+        assert!(detect(&img, &p).is_err());
+    }
+}
