@@ -17,6 +17,9 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         limits: vsg::Limits {
             max_depth: args.max_depth,
             max_shapes: args.max_shapes,
+            tessellation: vsg::shape::Tessellation {
+                segments: args.segments,
+            },
         },
     };
     let started = Instant::now();

@@ -101,6 +101,9 @@ pub enum OpKind {
     Appearance(Vec<(StrLit, AppearanceValue)>),
     /// `void()`
     Void,
+    /// `union()`, `intersection()`, `difference()`: the shapes instantiated so far in the rule
+    /// become one unique shape (§7.1.2).
+    Combine(crate::csg::BoolOp),
 }
 
 /// A string literal without its quotes.

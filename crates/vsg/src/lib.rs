@@ -25,6 +25,7 @@
 
 pub mod ast;
 pub mod compile;
+pub mod csg;
 pub mod diag;
 pub mod eval;
 pub mod export;

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, HashMap};
 use serde::Serialize;
 
 use crate::shape::Tessellation;
-use crate::tree::{Model, NodeState};
+use crate::tree::{Model, NodeState, Solid};
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Volumes {
@@ -34,7 +34,7 @@ impl Stats {
     pub fn of(model: &Model, tessellation: &Tessellation) -> Stats {
         let mut s = Stats::default();
         let mut triangles_of: HashMap<(crate::shape::ShapeType, Vec<u64>), usize> = HashMap::new();
-        for n in &model.nodes {
+        for (i, n) in model.nodes.iter().enumerate() {
             match n.state {
                 NodeState::NonTerminal => {
                     s.nonterminals += 1;
@@ -46,19 +46,26 @@ impl Stats {
             s.terminals += 1;
             let symbol = model.symbol(n);
             *s.by_symbol.entry(symbol.to_string()).or_default() += 1;
-            let Some(shape) = n.shape else { continue };
-            let v = shape.volume();
+            let Some(solid) = model.solid(i as u32) else {
+                continue;
+            };
+            let v = solid.volume();
             s.volume.total += v;
             *s.volume.by_symbol.entry(symbol.to_string()).or_default() += v;
             if n.state == NodeState::Terminal {
                 s.visible_volume += v;
-                let key = (
-                    shape.kind,
-                    shape.params().iter().map(|p| p.to_bits()).collect(),
-                );
-                s.triangles += *triangles_of
-                    .entry(key)
-                    .or_insert_with(|| shape.mesh(tessellation).triangles.len());
+                s.triangles += match solid {
+                    Solid::Primitive(shape) => {
+                        let key = (
+                            shape.kind,
+                            shape.params().iter().map(|p| p.to_bits()).collect(),
+                        );
+                        *triangles_of
+                            .entry(key)
+                            .or_insert_with(|| shape.mesh(tessellation).triangles.len())
+                    }
+                    Solid::Unique(_, u) => u.mesh.triangles.len(),
+                };
             }
         }
         s

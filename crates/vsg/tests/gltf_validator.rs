@@ -107,6 +107,7 @@ impl Tree {
             )],
             symbols: vec![symbol.to_owned()],
             appearances: vec![Appearance::default()],
+            ..Default::default()
         };
         Tree(model)
     }

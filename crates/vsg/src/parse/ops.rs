@@ -3,6 +3,7 @@
 //! argument and builds the [`OpKind`]. A new operation is one line in [`OPS`].
 
 use crate::ast::{AppearanceValue, AxisArg, Expr, Ident, Length, OpKind, Span, StrLit};
+use crate::csg::BoolOp;
 use crate::diag::Diagnostic;
 
 /// One argument as written, before we know what the function wants.
@@ -51,6 +52,15 @@ const OPS: &[(&str, Build)] = &[
     ("repeat", repeat),
     ("appearance", appearance),
     ("void", |c| c.arity(0).map(|_| OpKind::Void)),
+    ("union", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Union))
+    }),
+    ("intersection", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Intersection))
+    }),
+    ("difference", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Difference))
+    }),
 ];
 
 /// Checks a parsed call against [`OPS`] and builds its operation.

@@ -371,8 +371,7 @@ fn lexical_errors() {
 
 #[test]
 fn unknown_functions_wrong_arity_and_wrong_arguments() {
-    let unknown =
-        "unknown function 'divide'; expected one of T, R, I, split, repeat, appearance, void";
+    let unknown = "unknown function 'divide'; expected one of T, R, I, split, repeat, appearance, void, union, intersection, difference";
     assert_eq!(err("a::\n  divide(\"X\",{1}){b};"), (2, 3, unknown.into()));
     assert_eq!(
         err("a::T(1,2){c};"),
