@@ -51,6 +51,10 @@ pub struct VsgRunArgs {
     /// Segments around a full circle when meshing curved shapes.
     #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(3..=4096))]
     pub segments: u32,
+    /// Where `import "file.vsg"` looks after the importing file's own directory (repeatable),
+    /// e.g. `--lib library` for the medieval library.
+    #[arg(long = "lib", value_name = "DIR")]
+    pub lib: Vec<PathBuf>,
     /// Stop with an error when production nests deeper than this.
     #[arg(long, default_value_t = vsg::Limits::default().max_depth)]
     pub max_depth: u32,
@@ -64,7 +68,14 @@ fn parse_assignment(s: &str) -> Result<(String, f64), String> {
         .split_once('=')
         .ok_or_else(|| format!("expected NAME=VALUE, found '{s}'"))?;
     let name = name.trim();
-    if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+    // Imported floats are named `alias.name`.
+    if name.is_empty()
+        || name.starts_with('.')
+        || name.ends_with('.')
+        || !name
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_' || c == '.')
+    {
         return Err(format!("'{name}' is not a variable name"));
     }
     let v: f64 = value
@@ -118,6 +129,16 @@ mod tests {
         assert!(run_args(&["--set", "h"]).is_err());
         assert!(run_args(&["--set", "h=tall"]).is_err());
         assert!(run_args(&["--set", "h=inf"]).is_err());
+        let a = run_args(&["--set", "tower.radius=4"]).unwrap();
+        assert_eq!(a.set, vec![("tower.radius".to_string(), 4.0)]);
+        assert!(run_args(&["--set", "tower.=4"]).is_err());
+    }
+
+    #[test]
+    fn lib_flag_repeats() {
+        assert!(run_args(&[]).unwrap().lib.is_empty());
+        let a = run_args(&["--lib", "library", "--lib", "/x"]).unwrap();
+        assert_eq!(a.lib, [PathBuf::from("library"), PathBuf::from("/x")]);
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! `castellan vsg run`: read a program, produce the model, write glb / obj+mtl / STATS.json.
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
@@ -23,8 +24,11 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         },
     };
     let started = Instant::now();
-    let model =
-        vsg::run(&src, &options).map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
+    let mut resolver = FileResolver {
+        lib: args.lib.clone(),
+    };
+    let model = vsg::run_with(&file, &src, &options, &mut resolver)
+        .map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
     let produced = started.elapsed();
     let export = vsg::export::ExportOptions {
         tessellation: vsg::shape::Tessellation {
@@ -64,4 +68,28 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Finds imported programs: beside the importing file first, then in each `--lib` directory.
+pub struct FileResolver {
+    pub lib: Vec<PathBuf>,
+}
+
+impl vsg::import::Resolver for FileResolver {
+    fn load(&mut self, from: &str, path: &str) -> Result<(String, String), String> {
+        let here = Path::new(from).parent().unwrap_or(Path::new(""));
+        let candidates: Vec<PathBuf> = std::iter::once(here.join(path))
+            .chain(self.lib.iter().map(|d| d.join(path)))
+            .collect();
+        let Some(found) = candidates.iter().find(|c| c.is_file()) else {
+            let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
+            return Err(format!(
+                "no such file (looked in {}; add directories with --lib)",
+                looked.join(", ")
+            ));
+        };
+        let text = std::fs::read_to_string(found)
+            .map_err(|e| format!("cannot read {}: {e}", found.display()))?;
+        Ok((found.display().to_string(), text))
+    }
 }

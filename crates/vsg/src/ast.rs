@@ -36,6 +36,18 @@ pub struct Program {
 pub enum Item {
     Decl(Decl),
     Rule(Rule),
+    Import(Import),
+}
+
+/// `import "file.vsg" as name;` or `import "file.vsg" as name (var = expr, ...);`: the other
+/// program's rules, symbols and floats join this one under `name.` (see [`crate::import`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Import {
+    pub path: StrLit,
+    pub alias: Ident,
+    /// Values for the imported program's declared floats, in the importer's scope.
+    pub args: Vec<(Ident, Expr)>,
+    pub span: Span,
 }
 
 /// `float name = expr;` or `float [] name = {expr, ...};`

@@ -66,7 +66,7 @@ pub enum CompileError {
 
 pub fn compile<'p>(
     program: &'p Program,
-    src: &str,
+    line_of: &dyn Fn(Span) -> u32,
     overrides: &[(String, f64)],
     rng: &mut ChaCha8Rng,
 ) -> Result<Compiled<'p>, CompileError> {
@@ -78,7 +78,7 @@ pub fn compile<'p>(
     for item in &program.items {
         if let Item::Rule(rule) = item {
             symbols.intern(&rule.predecessor.name);
-            match check_rule(rule, src, &mut symbols) {
+            match check_rule(rule, line_of, &mut symbols) {
                 Ok(r) => rules.push(r),
                 Err(d) => errors.push(d),
             }
@@ -237,13 +237,9 @@ fn declarations(
     }
 }
 
-fn line_of(src: &str, span: Span) -> u32 {
-    crate::diag::line_col(src, span.start).0 as u32
-}
-
 fn check_rule<'p>(
     rule: &'p Rule,
-    src: &str,
+    line_of: &dyn Fn(Span) -> u32,
     symbols: &mut Symbols,
 ) -> Result<CompiledRule<'p>, Diagnostic> {
     let successors: Vec<Succ> = rule
@@ -386,7 +382,7 @@ fn check_rule<'p>(
     }
     Ok(CompiledRule {
         ast: rule,
-        line: line_of(src, rule.span),
+        line: line_of(rule.span),
         successors,
         geometry,
         types,

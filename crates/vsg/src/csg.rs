@@ -48,8 +48,10 @@ pub trait MeshBoolean {
     fn combine(&self, op: BoolOp, meshes: &[TriMesh]) -> Result<TriMesh, CsgError>;
 }
 
-/// [`MeshBoolean`] by `boolmesh`. The difference subtracts the union of the rest in one step
-/// (as Manifold's batched Booleans do), which is faster than subtracting one by one.
+/// [`MeshBoolean`] by `boolmesh`. Unions (and the cutters of a difference, which subtracts
+/// their union in one step) are batched: shapes whose bounding boxes do not touch are disjoint,
+/// so their union is their meshes side by side; overlapping groups are merged pairwise in a
+/// balanced tree. A wall minus 100 separate windows is then a single Boolean.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Manifold;
 
@@ -57,50 +59,120 @@ impl MeshBoolean for Manifold {
     fn combine(&self, op: BoolOp, meshes: &[TriMesh]) -> Result<TriMesh, CsgError> {
         let name = op.name();
         let fail = |why: String| CsgError::Failed { op: name, why };
-        let inputs = meshes
-            .iter()
-            .enumerate()
-            .map(|(index, m)| {
-                to_manifold(m).map_err(|why| CsgError::BadInput {
+        for (index, m) in meshes.iter().enumerate() {
+            if !m.is_closed_oriented() {
+                return Err(CsgError::BadInput {
                     op: name,
                     index,
-                    why,
-                })
+                    why: "it has open, non-manifold or inconsistently oriented edges".into(),
+                });
+            }
+        }
+        let manifold = |m: &TriMesh, index: usize| {
+            to_manifold(m).map_err(|why| CsgError::BadInput {
+                op: name,
+                index,
+                why,
             })
-            .collect::<Result<Vec<_>, _>>()?;
-        let fold =
-            |items: &[BmManifold], kind: fn() -> OpType| -> Result<Option<BmManifold>, CsgError> {
-                let mut acc: Option<BmManifold> = None;
-                for m in items {
-                    acc = Some(match acc {
-                        None => m.clone(),
-                        Some(a) => compute_boolean(&a, m, kind()).map_err(fail)?,
-                    });
-                }
-                Ok(acc)
-            };
-        let result = match op {
-            BoolOp::Union => fold(&inputs, || OpType::Add)?,
-            BoolOp::Intersection => fold(&inputs, || OpType::Intersect)?,
-            BoolOp::Difference => match inputs.split_first() {
-                None => None,
-                Some((first, rest)) => match fold(rest, || OpType::Add)? {
-                    None => Some(first.clone()),
-                    Some(cut) => {
-                        Some(compute_boolean(first, &cut, OpType::Subtract).map_err(fail)?)
-                    }
-                },
-            },
         };
-        let result = result.ok_or(CsgError::NoShapes { op: name })?;
-        Ok(from_manifold(&result))
+        let Some((first, rest)) = meshes.split_first() else {
+            return Err(CsgError::NoShapes { op: name });
+        };
+        let result = match op {
+            BoolOp::Union => union_all(meshes, &fail)?,
+            BoolOp::Intersection => {
+                let mut acc = Some(manifold(first, 0)?);
+                for (i, m) in rest.iter().enumerate() {
+                    let Some(a) = acc else { break };
+                    acc = boolean(&a, &manifold(m, i + 1)?, OpType::Intersect, &fail)?;
+                }
+                acc.map_or_else(TriMesh::default, |m| from_manifold(&m))
+            }
+            BoolOp::Difference if rest.is_empty() => first.clone(),
+            BoolOp::Difference => {
+                let cut = union_all(rest, &fail)?;
+                let cut = to_manifold(&cut).map_err(fail)?;
+                boolean(&manifold(first, 0)?, &cut, OpType::Subtract, &fail)?
+                    .map_or_else(TriMesh::default, |m| from_manifold(&m))
+            }
+        };
+        Ok(result)
     }
 }
 
-fn to_manifold(m: &TriMesh) -> Result<BmManifold, String> {
-    if !m.is_closed_oriented() {
-        return Err("it has open, non-manifold or inconsistently oriented edges".into());
+/// One `boolmesh` Boolean; `None` when the result is empty (boolmesh reports an empty result
+/// as the error "empty pos matrix", as its own tests note).
+fn boolean(
+    a: &BmManifold,
+    b: &BmManifold,
+    op: OpType,
+    fail: &dyn Fn(String) -> CsgError,
+) -> Result<Option<BmManifold>, CsgError> {
+    match compute_boolean(a, b, op) {
+        Ok(m) => Ok(Some(m)),
+        Err(e) if e == "empty pos matrix" => Ok(None),
+        Err(e) => Err(fail(e)),
     }
+}
+
+/// The union of closed meshes: disjoint groups side by side, each group merged pairwise.
+fn union_all(meshes: &[TriMesh], fail: &dyn Fn(String) -> CsgError) -> Result<TriMesh, CsgError> {
+    let boxes: Vec<_> = meshes.iter().map(|m| m.bounds()).collect();
+    let touch = |a: usize, b: usize| match (boxes[a], boxes[b]) {
+        (Some((alo, ahi)), Some((blo, bhi))) => {
+            (0..3).all(|k| alo[k] <= bhi[k] + 1e-9 && blo[k] <= ahi[k] + 1e-9)
+        }
+        _ => false,
+    };
+    // Union-find over touching bounding boxes.
+    let mut parent: Vec<usize> = (0..meshes.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for a in 0..meshes.len() {
+        for b in a + 1..meshes.len() {
+            if touch(a, b) {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    let mut groups: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for i in 0..meshes.len() {
+        groups.entry(root(&mut parent, i)).or_default().push(i);
+    }
+    let mut out = TriMesh::default();
+    for members in groups.values() {
+        if let [only] = members.as_slice() {
+            out.append(&meshes[*only]);
+            continue;
+        }
+        let mut level = members
+            .iter()
+            .map(|&i| to_manifold(&meshes[i]).map_err(fail))
+            .collect::<Result<Vec<_>, _>>()?;
+        while level.len() > 1 {
+            let mut next = Vec::with_capacity(level.len().div_ceil(2));
+            let mut it = level.into_iter();
+            while let Some(a) = it.next() {
+                next.push(match it.next() {
+                    // The union of two non-empty solids is not empty.
+                    Some(b) => boolean(&a, &b, OpType::Add, fail)?.unwrap_or(a),
+                    None => a,
+                });
+            }
+            level = next;
+        }
+        out.append(&from_manifold(&level[0]));
+    }
+    Ok(out)
+}
+
+fn to_manifold(m: &TriMesh) -> Result<BmManifold, String> {
     let pos: Vec<f64> = m.positions.iter().flatten().copied().collect();
     let idx: Vec<usize> = m.triangles.iter().flatten().map(|&i| i as usize).collect();
     BmManifold::new(&pos, &idx)
@@ -157,6 +229,42 @@ mod tests {
         assert!(u.is_closed_oriented() && i.is_closed_oriented());
         assert!((u.signed_volume() - 12.0).abs() < 1e-9);
         assert!((i.signed_volume() - 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn batched_union_keeps_disjoint_groups_apart_and_merges_overlaps() {
+        let meshes = [
+            boxed([2.0; 3], [0.0; 3]),
+            boxed([2.0; 3], [1.0, 0.0, 0.0]),
+            boxed([2.0; 3], [0.0, 1.0, 0.0]),
+            boxed([1.0; 3], [10.0, 0.0, 0.0]),
+        ];
+        let u = Manifold.combine(BoolOp::Union, &meshes).unwrap();
+        assert!(u.is_closed_oriented());
+        // Three overlapping 2-cubes, by inclusion-exclusion 24 - 4 - 4 - 2 + 2 = 16, plus the
+        // far unit cube.
+        assert!(
+            (u.signed_volume() - 17.0).abs() < 1e-9,
+            "{}",
+            u.signed_volume()
+        );
+        let wall = boxed([10.0, 4.0, 1.0], [0.0; 3]);
+        let windows: Vec<_> = (0..4)
+            .map(|i| boxed([1.0, 1.0, 2.0], [-3.0 + 2.0 * i as f64, 0.0, 0.0]))
+            .collect();
+        let mut all = vec![wall];
+        all.extend(windows);
+        let d = Manifold.combine(BoolOp::Difference, &all).unwrap();
+        assert!(d.is_closed_oriented());
+        assert!((d.signed_volume() - 36.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn disjoint_intersection_is_empty() {
+        let a = boxed([1.0; 3], [0.0; 3]);
+        let b = boxed([1.0; 3], [5.0, 0.0, 0.0]);
+        let i = Manifold.combine(BoolOp::Intersection, &[a, b]).unwrap();
+        assert!(i.triangles.is_empty());
     }
 
     #[test]

@@ -313,7 +313,7 @@ fn empty_list_braces_and_comma_errors_point_at_the_token() {
     );
     assert_eq!(
         err("a::{b;"),
-        (1, 6, "expected ',' or '}', found ';'".into())
+        (1, 6, "expected ',', '.' or '}', found ';'".into())
     );
     assert_eq!(
         err("a::{};"),
@@ -329,7 +329,11 @@ fn empty_list_braces_and_comma_errors_point_at_the_token() {
     );
     assert_eq!(
         err(")"),
-        (1, 1, "expected declaration or rule, found ')'".into())
+        (
+            1,
+            1,
+            "expected declaration, import or rule, found ')'".into()
+        )
     );
     assert_eq!(
         err("a::{j3d.foo};"),
