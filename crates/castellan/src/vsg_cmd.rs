@@ -51,6 +51,19 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         outputs.add(obj_path, obj.into_bytes());
         outputs.add(&mtl_path, mtl.into_bytes());
     }
+    if let Some(preview_path) = &args.preview {
+        let (width, height) = args.preview_size;
+        let picture = vsg::render::render(
+            &model,
+            &vsg::render::RenderOptions {
+                width,
+                height,
+                tessellation: export.tessellation,
+                ..Default::default()
+            },
+        );
+        outputs.add(preview_path, png(&picture)?);
+    }
     let stats = vsg::stats::Stats::of(&model, &export.tessellation);
     if let Some(stats_path) = &args.stats {
         outputs.add(stats_path, serde_json::to_vec_pretty(&stats)?);
@@ -68,6 +81,17 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Encodes a rendered picture as PNG.
+fn png(picture: &vsg::render::Picture) -> Result<Vec<u8>> {
+    let image = image::RgbImage::from_raw(picture.width, picture.height, picture.rgb.clone())
+        .context("the preview picture has the wrong size")?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .context("cannot encode the preview PNG")?;
+    Ok(bytes.into_inner())
 }
 
 /// Finds imported programs: beside the importing file first, then in each `--lib` directory.

@@ -34,6 +34,7 @@ pub mod mesh;
 pub mod parse;
 pub mod partition;
 pub mod produce;
+pub mod render;
 pub mod shape;
 pub mod stats;
 pub mod tree;
