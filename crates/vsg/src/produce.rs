@@ -453,6 +453,7 @@ impl Producer<'_, '_> {
             .chain([a.transparency, a.ambient, a.shine].iter())
             .map(|v| v.to_bits())
             .collect();
+        key.push(a.density.map_or(u64::MAX, f64::to_bits));
         if let Some(t) = &a.texture {
             key.extend(t.bytes().map(u64::from));
         }
@@ -475,7 +476,7 @@ fn eval_len(scope: &mut Scope, l: &Length) -> Result<Len, Diagnostic> {
 }
 
 const ATTRIBUTES: &str =
-    "color, transparency, ambient, diffuse, specular, emissive, shine, texture";
+    "color, transparency, ambient, diffuse, specular, emissive, shine, texture, density";
 
 fn set_appearance(
     mut a: Appearance,
@@ -495,6 +496,7 @@ fn set_appearance(
                     ));
                 }
             },
+            "density" => a.density = Some(density(value, scope, span)?),
             "color" => a.color = rgb(value, scope, span)?,
             "diffuse" => a.diffuse = rgb(value, scope, span)?,
             "specular" => a.specular = rgb(value, scope, span)?,
@@ -538,6 +540,31 @@ fn unit(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64, D
             span,
             "one number",
         )),
+    }
+}
+
+/// A density in kg/m³: one positive number (an extension for masses in STATS.json).
+fn density(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64, Diagnostic> {
+    let e = match value {
+        AppearanceValue::Scalar(e) => e,
+        AppearanceValue::List(v) if v.len() == 1 => &v[0],
+        _ => {
+            return Err(Diagnostic::new(
+                "density takes one number, in kg/m³",
+                span,
+                "one number",
+            ));
+        }
+    };
+    let v = scope.eval(e)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Diagnostic::new(
+            format!("density {v} must be a positive number of kg/m³"),
+            e.span(),
+            "not a density",
+        ))
     }
 }
 

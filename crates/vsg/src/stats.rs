@@ -15,6 +15,13 @@ pub struct Volumes {
     pub by_symbol: BTreeMap<String, f64>,
 }
 
+/// Masses (kg) of the terminals whose appearance gives a density (kg/m³), void ones included.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Masses {
+    pub total: f64,
+    pub by_symbol: BTreeMap<String, f64>,
+}
+
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Stats {
     pub terminals: usize,
@@ -28,6 +35,9 @@ pub struct Stats {
     pub visible_volume: f64,
     /// Triangles of the visible terminals' meshes at the given tessellation.
     pub triangles: usize,
+    /// Present when some terminal's appearance gives a density.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<Masses>,
 }
 
 impl Stats {
@@ -52,6 +62,11 @@ impl Stats {
             let v = solid.volume();
             s.volume.total += v;
             *s.volume.by_symbol.entry(symbol.to_string()).or_default() += v;
+            if let Some(density) = model.appearance(n).density {
+                let m = s.mass.get_or_insert_with(Masses::default);
+                m.total += v * density;
+                *m.by_symbol.entry(symbol.to_string()).or_default() += v * density;
+            }
             if n.state == NodeState::Terminal {
                 s.visible_volume += v;
                 s.triangles += match solid {

@@ -75,6 +75,9 @@ pub struct Appearance {
     pub shine: f64,
     /// Image file name, resolved by the caller when exporting.
     pub texture: Option<String>,
+    /// Density of the material in kg/m³ (`appearance("density", 2400)`): terminals with one
+    /// get a mass in STATS.json.
+    pub density: Option<f64>,
 }
 
 impl Default for Appearance {
@@ -88,6 +91,7 @@ impl Default for Appearance {
             emissive: [0.0, 0.0, 0.0],
             shine: 0.2,
             texture: None,
+            density: None,
         }
     }
 }

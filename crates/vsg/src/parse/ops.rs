@@ -115,7 +115,7 @@ fn repeat(c: Call) -> Result<OpKind, Diagnostic> {
 }
 
 fn appearance(c: Call) -> Result<OpKind, Diagnostic> {
-    if c.args.is_empty() || c.args.len() % 2 != 0 {
+    if c.args.is_empty() || !c.args.len().is_multiple_of(2) {
         return Err(c.arity_error("pairs of \"attribute\", value arguments"));
     }
     let mut pairs = Vec::new();
