@@ -30,6 +30,7 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
     let model = vsg::run_with(&file, &src, &options, &mut resolver)
         .map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
     let produced = started.elapsed();
+    check_textures(&model, &args.program)?;
     let export = vsg::export::ExportOptions {
         tessellation: vsg::shape::Tessellation {
             segments: args.segments,
@@ -80,6 +81,37 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         produced.as_secs_f64() * 1e3,
         args.output.display()
     );
+    Ok(())
+}
+
+/// Every texture a visible terminal uses must be a readable image, looked up beside the
+/// program; the error names the file and the rule that set it.
+fn check_textures(model: &vsg::Model, program: &Path) -> Result<()> {
+    let dir = program.parent().unwrap_or(Path::new(""));
+    let mut seen = std::collections::HashSet::new();
+    for node in model.terminals() {
+        if node.state != vsg::tree::NodeState::Terminal {
+            continue;
+        }
+        let appearance = model.appearance(node);
+        let Some(texture) = &appearance.texture else {
+            continue;
+        };
+        if !seen.insert(texture.clone()) {
+            continue;
+        }
+        let path = dir.join(texture);
+        if let Err(e) = image::open(&path) {
+            return Err(anyhow!(
+                "{}:{}: cannot read texture '{}' ({}) set for '{}': {e}",
+                program.display(),
+                appearance.texture_line,
+                texture,
+                path.display(),
+                model.symbol(node)
+            ));
+        }
+    }
     Ok(())
 }
 

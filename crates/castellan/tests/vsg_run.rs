@@ -248,3 +248,38 @@ fn imports_search_lib_directories_and_name_missing_files() {
     // 12 m of wall: 5 merlons and 5 crenels.
     assert_eq!(s["by_symbol"]["wall.crenelGap"], 5);
 }
+
+#[test]
+fn unreadable_texture_names_the_file_and_the_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("t.vsg");
+    std::fs::write(
+        &program,
+        "Axiom :: I(\"box\",{2,1,1}){row};\nrow :: repeat(\"X\", {1}){stone};\n\
+         stone :: appearance(\"texture\", {\"good.png\"}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("t.glb");
+    let run = || {
+        castellan()
+            .args(["vsg", "run"])
+            .arg(&program)
+            .arg("-o")
+            .arg(&glb)
+            .assert()
+    };
+    let out = run().failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        err.contains("t.vsg:3: cannot read texture 'good.png'"),
+        "{err}"
+    );
+    assert!(err.contains("set for 'stone'"), "{err}");
+    assert!(!glb.exists());
+    std::fs::write(dir.path().join("good.png"), b"not a png").unwrap();
+    run().failure();
+    image::RgbImage::new(4, 4)
+        .save(dir.path().join("good.png"))
+        .unwrap();
+    run().success();
+}

@@ -148,6 +148,8 @@ pub enum AppearanceValue {
     List(Vec<Expr>),
     /// `"bricks.png"`
     Text(StrLit),
+    /// `{"a.png", "b.png"}`: one is picked per shape (figure 7.6)
+    Texts(Vec<StrLit>),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

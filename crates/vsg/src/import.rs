@@ -350,6 +350,9 @@ impl Rename<'_> {
                         AppearanceValue::Scalar(e) => self.expr(e),
                         AppearanceValue::List(es) => es.iter_mut().for_each(|e| self.expr(e)),
                         AppearanceValue::Text(s) => self.span(&mut s.span),
+                        AppearanceValue::Texts(v) => {
+                            v.iter_mut().for_each(|s| self.span(&mut s.span))
+                        }
                     }
                 }
             }

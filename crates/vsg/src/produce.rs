@@ -393,7 +393,7 @@ impl Producer<'_, '_> {
                         self.model.appearances[self.model.nodes[id as usize].appearance as usize]
                             .clone()
                     });
-                    appearance = Some(set_appearance(base, attrs_list, &mut scope)?);
+                    appearance = Some(set_appearance(base, attrs_list, rule.line, &mut scope)?);
                 }
                 OpKind::Void => void = true,
                 OpKind::Combine(kind) => {
@@ -454,6 +454,7 @@ impl Producer<'_, '_> {
             .map(|v| v.to_bits())
             .collect();
         key.push(a.density.map_or(u64::MAX, f64::to_bits));
+        key.push(u64::from(a.texture_line));
         if let Some(t) = &a.texture {
             key.extend(t.bytes().map(u64::from));
         }
@@ -481,16 +482,26 @@ const ATTRIBUTES: &str =
 fn set_appearance(
     mut a: Appearance,
     list: &[(crate::ast::StrLit, AppearanceValue)],
+    line: u32,
     scope: &mut Scope,
 ) -> Result<Appearance, Diagnostic> {
     for (name, value) in list {
         let span = name.span;
         match name.value.as_str() {
             "texture" => match value {
-                AppearanceValue::Text(s) => a.texture = Some(s.value.clone()),
+                AppearanceValue::Text(s) => {
+                    a.texture = Some(s.value.clone());
+                    a.texture_line = line;
+                }
+                // Figure 7.6: one of the photographs, picked per shape by the seeded stream.
+                AppearanceValue::Texts(v) => {
+                    let pick = scope.rng.random_range(0..v.len());
+                    a.texture = Some(v[pick].value.clone());
+                    a.texture_line = line;
+                }
                 _ => {
                     return Err(Diagnostic::new(
-                        "texture takes a file name in quotes",
+                        "texture takes a file name in quotes, or a list {\"a.png\", \"b.png\"} to pick from",
                         span,
                         "texture",
                     ));

@@ -75,6 +75,8 @@ pub struct Appearance {
     pub shine: f64,
     /// Image file name, resolved by the caller when exporting.
     pub texture: Option<String>,
+    /// Line of the rule that set `texture`, for messages about the file.
+    pub texture_line: u32,
     /// Density of the material in kg/m³ (`appearance("density", 2400)`): terminals with one
     /// get a mass in STATS.json.
     pub density: Option<f64>,
@@ -91,6 +93,7 @@ impl Default for Appearance {
             emissive: [0.0, 0.0, 0.0],
             shine: 0.2,
             texture: None,
+            texture_line: 0,
             density: None,
         }
     }

@@ -178,3 +178,30 @@ fn densities_give_masses_per_symbol() {
         "{e}"
     );
 }
+
+#[test]
+fn texture_lists_pick_one_photograph_per_shape_from_the_seed() {
+    let src = "Axiom :: I(\"box\",{30,1,1}){row};\n\
+               row :: repeat(\"X\", {1}){stone};\n\
+               stone :: appearance(\"texture\", {\"a.png\", \"b.png\", \"c.png\"}){j3d.terminal};";
+    let picks = |seed| {
+        let m = vsg::run(
+            src,
+            &RunOptions {
+                seed,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        m.terminals()
+            .map(|n| m.appearance(n).texture.clone().unwrap())
+            .collect::<Vec<_>>()
+    };
+    let first = picks(3);
+    assert_eq!(first.len(), 30);
+    for name in ["a.png", "b.png", "c.png"] {
+        assert!(first.iter().any(|t| t == name), "{name} never picked");
+    }
+    assert_eq!(first, picks(3));
+    assert_ne!(first, picks(4));
+}

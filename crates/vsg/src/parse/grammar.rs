@@ -182,7 +182,14 @@ where
         .collect::<Vec<_>>()
         .delimited_by(p("{"), p("}"))
         .map_with(|items, e| Arg::List(items, span(e.span())));
-    let arg = choice((string().map(Arg::Str), list, expr().map(Arg::Expr))).labelled("argument");
+    let strings = string()
+        .separated_by(p(","))
+        .at_least(1)
+        .collect::<Vec<_>>()
+        .delimited_by(p("{"), p("}"))
+        .map_with(|items, e| Arg::Strs(items, span(e.span())));
+    let arg =
+        choice((string().map(Arg::Str), strings, list, expr().map(Arg::Expr))).labelled("argument");
     ident()
         .labelled("function name")
         .then(

@@ -12,6 +12,8 @@ pub enum Arg {
     Str(StrLit),
     /// `{e, ~e, ...}`: items with the span of their `~`, if any.
     List(Vec<(Option<Span>, Expr)>, Span),
+    /// `{"a.png", "b.png"}`
+    Strs(Vec<StrLit>, Span),
     Expr(Expr),
 }
 
@@ -19,7 +21,7 @@ impl Arg {
     fn span(&self) -> Span {
         match self {
             Arg::Str(s) => s.span,
-            Arg::List(_, span) => *span,
+            Arg::List(_, span) | Arg::Strs(_, span) => *span,
             Arg::Expr(e) => e.span(),
         }
     }
@@ -28,6 +30,7 @@ impl Arg {
         match self {
             Arg::Str(_) => "a string",
             Arg::List(..) => "a list",
+            Arg::Strs(..) => "a list of strings",
             Arg::Expr(_) => "an expression",
         }
     }
@@ -124,6 +127,7 @@ fn appearance(c: Call) -> Result<OpKind, Diagnostic> {
         let attr = string(attr, "appearance", i + 1, "an attribute name")?;
         let value = match value {
             Arg::Str(s) => AppearanceValue::Text(s),
+            Arg::Strs(v, _) => AppearanceValue::Texts(v),
             Arg::Expr(e) => AppearanceValue::Scalar(e),
             list => AppearanceValue::List(plain_list(list, "appearance", i + 2, "a value list")?),
         };
