@@ -48,6 +48,13 @@ pub struct VsgRunArgs {
     /// Write counts and exact volumes as JSON.
     #[arg(long, value_name = "STATS.json")]
     pub stats: Option<PathBuf>,
+    /// Also render a quick preview picture (PNG): visible terminals in their colours, from a
+    /// 3/4 view fitted to the model.
+    #[arg(long, value_name = "PREVIEW.png")]
+    pub preview: Option<PathBuf>,
+    /// Size of the preview picture in pixels.
+    #[arg(long, value_name = "WxH", default_value = "800x600", value_parser = parse_size)]
+    pub preview_size: (u32, u32),
     /// Override a declared float: `--set height=12.5` (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_assignment)]
     pub set: Vec<(String, f64)>,
@@ -57,6 +64,10 @@ pub struct VsgRunArgs {
     /// Segments around a full circle when meshing curved shapes.
     #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(3..=4096))]
     pub segments: u32,
+    /// Where `import "file.vsg"` looks after the importing file's own directory (repeatable),
+    /// e.g. `--lib library` for the medieval library.
+    #[arg(long = "lib", value_name = "DIR")]
+    pub lib: Vec<PathBuf>,
     /// Stop with an error when production nests deeper than this.
     #[arg(long, default_value_t = vsg::Limits::default().max_depth)]
     pub max_depth: u32,
@@ -201,7 +212,14 @@ fn parse_assignment(s: &str) -> Result<(String, f64), String> {
         .split_once('=')
         .ok_or_else(|| format!("expected NAME=VALUE, found '{s}'"))?;
     let name = name.trim();
-    if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+    // Imported floats are named `alias.name`.
+    if name.is_empty()
+        || name.starts_with('.')
+        || name.ends_with('.')
+        || !name
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_' || c == '.')
+    {
         return Err(format!("'{name}' is not a variable name"));
     }
     let v: f64 = value
@@ -212,6 +230,17 @@ fn parse_assignment(s: &str) -> Result<(String, f64), String> {
         return Err(format!("'{value}' is not a finite number"));
     }
     Ok((name.to_string(), v))
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("expected WIDTHxHEIGHT such as 800x600 (each 16 to 8192), found '{s}'");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if !(16..=8192).contains(&w) || !(16..=8192).contains(&h) {
+        return Err(bad());
+    }
+    Ok((w, h))
 }
 
 #[cfg(test)]
@@ -394,6 +423,28 @@ mod tests {
         assert!(run_args(&["--set", "h"]).is_err());
         assert!(run_args(&["--set", "h=tall"]).is_err());
         assert!(run_args(&["--set", "h=inf"]).is_err());
+        let a = run_args(&["--set", "tower.radius=4"]).unwrap();
+        assert_eq!(a.set, vec![("tower.radius".to_string(), 4.0)]);
+        assert!(run_args(&["--set", "tower.=4"]).is_err());
+    }
+
+    #[test]
+    fn preview_flags() {
+        let a = run_args(&[]).unwrap();
+        assert_eq!((a.preview, a.preview_size), (None, (800, 600)));
+        let a = run_args(&["--preview", "p.png", "--preview-size", "320x200"]).unwrap();
+        assert_eq!(a.preview, Some(PathBuf::from("p.png")));
+        assert_eq!(a.preview_size, (320, 200));
+        assert!(run_args(&["--preview-size", "320"]).is_err());
+        assert!(run_args(&["--preview-size", "0x200"]).is_err());
+        assert!(run_args(&["--preview-size", "99999x200"]).is_err());
+    }
+
+    #[test]
+    fn lib_flag_repeats() {
+        assert!(run_args(&[]).unwrap().lib.is_empty());
+        let a = run_args(&["--lib", "library", "--lib", "/x"]).unwrap();
+        assert_eq!(a.lib, [PathBuf::from("library"), PathBuf::from("/x")]);
     }
 
     #[test]

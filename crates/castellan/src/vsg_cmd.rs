@@ -1,5 +1,6 @@
 //! `castellan vsg run`: read a program, produce the model, write glb / obj+mtl / STATS.json.
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
@@ -17,12 +18,19 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         limits: vsg::Limits {
             max_depth: args.max_depth,
             max_shapes: args.max_shapes,
+            tessellation: vsg::shape::Tessellation {
+                segments: args.segments,
+            },
         },
     };
     let started = Instant::now();
-    let model =
-        vsg::run(&src, &options).map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
+    let mut resolver = FileResolver {
+        lib: args.lib.clone(),
+    };
+    let model = vsg::run_with(&file, &src, &options, &mut resolver)
+        .map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
     let produced = started.elapsed();
+    check_textures(&model, &args.program)?;
     let export = vsg::export::ExportOptions {
         tessellation: vsg::shape::Tessellation {
             segments: args.segments,
@@ -44,6 +52,19 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         outputs.add(obj_path, obj.into_bytes());
         outputs.add(&mtl_path, mtl.into_bytes());
     }
+    if let Some(preview_path) = &args.preview {
+        let (width, height) = args.preview_size;
+        let picture = vsg::render::render(
+            &model,
+            &vsg::render::RenderOptions {
+                width,
+                height,
+                tessellation: export.tessellation,
+                ..Default::default()
+            },
+        );
+        outputs.add(preview_path, png(&picture)?);
+    }
     let stats = vsg::stats::Stats::of(&model, &export.tessellation);
     if let Some(stats_path) = &args.stats {
         outputs.add(stats_path, serde_json::to_vec_pretty(&stats)?);
@@ -61,4 +82,70 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Every texture a visible terminal uses must be a readable image, looked up beside the
+/// program; the error names the file and the rule that set it.
+fn check_textures(model: &vsg::Model, program: &Path) -> Result<()> {
+    let dir = program.parent().unwrap_or(Path::new(""));
+    let mut seen = std::collections::HashSet::new();
+    for node in model.terminals() {
+        if node.state != vsg::tree::NodeState::Terminal {
+            continue;
+        }
+        let appearance = model.appearance(node);
+        let Some(texture) = &appearance.texture else {
+            continue;
+        };
+        if !seen.insert(texture.clone()) {
+            continue;
+        }
+        let path = dir.join(texture);
+        if let Err(e) = image::open(&path) {
+            return Err(anyhow!(
+                "{}:{}: cannot read texture '{}' ({}) set for '{}': {e}",
+                program.display(),
+                appearance.texture_line,
+                texture,
+                path.display(),
+                model.symbol(node)
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Encodes a rendered picture as PNG.
+fn png(picture: &vsg::render::Picture) -> Result<Vec<u8>> {
+    let image = image::RgbImage::from_raw(picture.width, picture.height, picture.rgb.clone())
+        .context("the preview picture has the wrong size")?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .context("cannot encode the preview PNG")?;
+    Ok(bytes.into_inner())
+}
+
+/// Finds imported programs: beside the importing file first, then in each `--lib` directory.
+pub struct FileResolver {
+    pub lib: Vec<PathBuf>,
+}
+
+impl vsg::import::Resolver for FileResolver {
+    fn load(&mut self, from: &str, path: &str) -> Result<(String, String), String> {
+        let here = Path::new(from).parent().unwrap_or(Path::new(""));
+        let candidates: Vec<PathBuf> = std::iter::once(here.join(path))
+            .chain(self.lib.iter().map(|d| d.join(path)))
+            .collect();
+        let Some(found) = candidates.iter().find(|c| c.is_file()) else {
+            let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
+            return Err(format!(
+                "no such file (looked in {}; add directories with --lib)",
+                looked.join(", ")
+            ));
+        };
+        let text = std::fs::read_to_string(found)
+            .map_err(|e| format!("cannot read {}: {e}", found.display()))?;
+        Ok((found.display().to_string(), text))
+    }
 }

@@ -189,3 +189,97 @@ fn runaway_repeat_stops_at_max_shapes() {
         "{stderr}"
     );
 }
+
+fn library() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library")
+}
+
+#[test]
+fn preview_png_and_imports_beside_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("gate.png");
+    castellan()
+        .args(["vsg", "run"])
+        .arg(library().join("gatehouse.vsg"))
+        .arg("-o")
+        .arg(dir.path().join("gate.glb"))
+        .arg("--preview")
+        .arg(&png)
+        .args(["--preview-size", "64x48"])
+        .assert()
+        .success();
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    // IHDR: width and height, big-endian, after the 8-byte signature and 8-byte chunk header.
+    assert_eq!(&bytes[16..24], &[0, 0, 0, 64, 0, 0, 0, 48]);
+}
+
+#[test]
+fn imports_search_lib_directories_and_name_missing_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("walls.vsg");
+    std::fs::write(
+        &program,
+        "import \"curtain_wall.vsg\" as wall (length = 12);\nAxiom :: {wall.Axiom};\n",
+    )
+    .unwrap();
+    let stats = dir.path().join("s.json");
+    let run = |lib: bool| {
+        let mut c = castellan();
+        c.args(["vsg", "run"])
+            .arg(&program)
+            .arg("-o")
+            .arg(dir.path().join("w.glb"))
+            .arg("--stats")
+            .arg(&stats);
+        if lib {
+            c.arg("--lib").arg(library());
+        }
+        c.assert()
+    };
+    let out = run(false).failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        err.contains("walls.vsg:1:8: cannot import \"curtain_wall.vsg\": no such file"),
+        "{err}"
+    );
+    run(true).success();
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+    // 12 m of wall: 5 merlons and 5 crenels.
+    assert_eq!(s["by_symbol"]["wall.crenelGap"], 5);
+}
+
+#[test]
+fn unreadable_texture_names_the_file_and_the_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("t.vsg");
+    std::fs::write(
+        &program,
+        "Axiom :: I(\"box\",{2,1,1}){row};\nrow :: repeat(\"X\", {1}){stone};\n\
+         stone :: appearance(\"texture\", {\"good.png\"}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("t.glb");
+    let run = || {
+        castellan()
+            .args(["vsg", "run"])
+            .arg(&program)
+            .arg("-o")
+            .arg(&glb)
+            .assert()
+    };
+    let out = run().failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        err.contains("t.vsg:3: cannot read texture 'good.png'"),
+        "{err}"
+    );
+    assert!(err.contains("set for 'stone'"), "{err}");
+    assert!(!glb.exists());
+    std::fs::write(dir.path().join("good.png"), b"not a png").unwrap();
+    run().failure();
+    image::RgbImage::new(4, 4)
+        .save(dir.path().join("good.png"))
+        .unwrap();
+    run().success();
+}

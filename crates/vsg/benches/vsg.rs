@@ -24,6 +24,7 @@ fn options() -> RunOptions {
         limits: vsg::Limits {
             max_depth: 100,
             max_shapes: 3_000_000,
+            ..Default::default()
         },
         ..Default::default()
     }

@@ -36,6 +36,18 @@ pub struct Program {
 pub enum Item {
     Decl(Decl),
     Rule(Rule),
+    Import(Import),
+}
+
+/// `import "file.vsg" as name;` or `import "file.vsg" as name (var = expr, ...);`: the other
+/// program's rules, symbols and floats join this one under `name.` (see [`crate::import`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Import {
+    pub path: StrLit,
+    pub alias: Ident,
+    /// Values for the imported program's declared floats, in the importer's scope.
+    pub args: Vec<(Ident, Expr)>,
+    pub span: Span,
 }
 
 /// `float name = expr;` or `float [] name = {expr, ...};`
@@ -101,6 +113,9 @@ pub enum OpKind {
     Appearance(Vec<(StrLit, AppearanceValue)>),
     /// `void()`
     Void,
+    /// `union()`, `intersection()`, `difference()`: the shapes instantiated so far in the rule
+    /// become one unique shape (§7.1.2).
+    Combine(crate::csg::BoolOp),
 }
 
 /// A string literal without its quotes.
@@ -133,6 +148,8 @@ pub enum AppearanceValue {
     List(Vec<Expr>),
     /// `"bricks.png"`
     Text(StrLit),
+    /// `{"a.png", "b.png"}`: one is picked per shape (figure 7.6)
+    Texts(Vec<StrLit>),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

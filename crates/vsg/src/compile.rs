@@ -8,6 +8,7 @@ use std::collections::HashMap;
 use rand_chacha::ChaCha8Rng;
 
 use crate::ast::{DeclValue, Ident, Item, Op, OpKind, Program, Rule, Span, Successor};
+use crate::csg::BoolOp;
 use crate::diag::Diagnostic;
 use crate::eval::{Scope, Value};
 use crate::shape::{Axis, ShapeType};
@@ -41,6 +42,9 @@ pub struct CompiledRule<'p> {
     pub geometry: Geometry,
     /// Instantiated types, in order.
     pub types: Vec<ShapeType>,
+    /// `union()`/`intersection()`/`difference()`: the instantiations make one unique shape,
+    /// bound to the single successor.
+    pub combine: Option<BoolOp>,
 }
 
 /// A checked program, ready to produce.
@@ -62,7 +66,7 @@ pub enum CompileError {
 
 pub fn compile<'p>(
     program: &'p Program,
-    src: &str,
+    line_of: &dyn Fn(Span) -> u32,
     overrides: &[(String, f64)],
     rng: &mut ChaCha8Rng,
 ) -> Result<Compiled<'p>, CompileError> {
@@ -74,7 +78,7 @@ pub fn compile<'p>(
     for item in &program.items {
         if let Item::Rule(rule) = item {
             symbols.intern(&rule.predecessor.name);
-            match check_rule(rule, src, &mut symbols) {
+            match check_rule(rule, line_of, &mut symbols) {
                 Ok(r) => rules.push(r),
                 Err(d) => errors.push(d),
             }
@@ -107,6 +111,22 @@ pub fn compile<'p>(
                     "no rule for this symbol",
                 ));
             }
+        }
+    }
+    for r in rules.iter().filter(|r| r.combine.is_some()) {
+        if let (Succ::Symbol(id), Successor::Symbol(ident)) =
+            (r.successors[0], &r.ast.successors[0])
+            && let Some(own) = rules_by_symbol.get(id as usize).filter(|v| !v.is_empty())
+            && !own.iter().all(|&k| ends_in_place(&rules[k]))
+        {
+            errors.push(Diagnostic::new(
+                format!(
+                    "a unique shape is terminal (§7.1.2), but '{}' has a rule that replaces or divides it; its rules may only move, colour or void it before {{j3d.terminal}}",
+                    ident.name
+                ),
+                ident.span,
+                "this successor must be terminal",
+            ));
         }
     }
     rules_by_symbol.resize(symbols.names.len(), Vec::new());
@@ -217,13 +237,9 @@ fn declarations(
     }
 }
 
-fn line_of(src: &str, span: Span) -> u32 {
-    crate::diag::line_col(src, span.start).0 as u32
-}
-
 fn check_rule<'p>(
     rule: &'p Rule,
-    src: &str,
+    line_of: &dyn Fn(Span) -> u32,
     symbols: &mut Symbols,
 ) -> Result<CompiledRule<'p>, Diagnostic> {
     let successors: Vec<Succ> = rule
@@ -236,8 +252,42 @@ fn check_rule<'p>(
         .collect();
     let mut types = Vec::new();
     let mut divide: Option<(usize, Axis, usize, &Op)> = None;
+    let mut combine: Option<(BoolOp, &Op)> = None;
     for (i, op) in rule.ops.iter().enumerate() {
+        if let Some((c, _)) = combine
+            && matches!(
+                op.kind,
+                OpKind::Instantiate { .. }
+                    | OpKind::Split { .. }
+                    | OpKind::Repeat { .. }
+                    | OpKind::Translate(_)
+                    | OpKind::Rotate(_)
+                    | OpKind::Combine(_)
+            )
+        {
+            return Err(Diagnostic::new(
+                format!(
+                    "{}() ends the geometry of its rule: only appearance() and void() may follow it",
+                    c.name()
+                ),
+                op.span,
+                "after the Boolean",
+            ));
+        }
         match &op.kind {
+            OpKind::Combine(c) => {
+                if types.is_empty() {
+                    return Err(Diagnostic::new(
+                        format!(
+                            "{}() combines the shapes instantiated before it in the rule, and there are none; add I() calls before it",
+                            c.name()
+                        ),
+                        op.span,
+                        "nothing to combine",
+                    ));
+                }
+                combine = Some((*c, op));
+            }
             OpKind::Instantiate { shape_type, params } => {
                 let kind = ShapeType::parse(&shape_type.value).ok_or_else(|| {
                     let names: Vec<&str> = ShapeType::ALL.iter().map(|t| t.name()).collect();
@@ -306,6 +356,7 @@ fn check_rule<'p>(
         }
     };
     let wanted = match (geometry, divide) {
+        (Geometry::Instantiate(_), _) if combine.is_some() => Some((1, "unique shape")),
         (Geometry::Instantiate(n), _) => Some((n, "instantiations")),
         (Geometry::Divide { .. }, Some((_, _, n, op))) => Some((
             n,
@@ -331,11 +382,17 @@ fn check_rule<'p>(
     }
     Ok(CompiledRule {
         ast: rule,
-        line: line_of(src, rule.span),
+        line: line_of(rule.span),
         successors,
         geometry,
         types,
+        combine: combine.map(|c| c.0),
     })
+}
+
+/// A rule that keeps its shape and ends it: no I, split or repeat, one `j3d.terminal`.
+fn ends_in_place(rule: &CompiledRule) -> bool {
+    rule.geometry == Geometry::Keep && rule.successors == [Succ::Terminal]
 }
 
 fn successor_span(rule: &Rule) -> Span {

@@ -25,13 +25,16 @@
 
 pub mod ast;
 pub mod compile;
+pub mod csg;
 pub mod diag;
 pub mod eval;
 pub mod export;
+pub mod import;
 pub mod mesh;
 pub mod parse;
 pub mod partition;
 pub mod produce;
+pub mod render;
 pub mod shape;
 pub mod stats;
 pub mod tree;
@@ -69,19 +72,24 @@ impl Default for RunOptions {
 /// Why a program could not be run.
 #[derive(Debug)]
 pub enum Error {
-    /// Syntax or static errors, in source order.
-    Program(Vec<Diagnostic>),
+    /// Syntax or static errors, in source order; spans are numbered across the program and its
+    /// imports as `sources` says.
+    Program(Vec<Diagnostic>, import::Sources),
     /// A bad `--set`.
     Override(String),
 }
 
 impl Error {
-    /// All messages, each as `file:line:col: message` with an excerpt.
+    /// All messages, each as `file:line:col: message` with an excerpt. `file` and `src` name
+    /// the main program; messages about imported programs name those.
     pub fn render(&self, file: &str, src: &str) -> String {
         match self {
-            Error::Program(ds) => ds
+            Error::Program(ds, sources) => ds
                 .iter()
-                .map(|d| d.render(file, src))
+                .map(|d| match sources.files.get(1) {
+                    Some(f) if d.span.start >= f.base => sources.render(d),
+                    _ => d.render(file, src),
+                })
                 .collect::<Vec<_>>()
                 .join("\n"),
             Error::Override(m) => format!("{file}: {m}\n"),
@@ -89,14 +97,29 @@ impl Error {
     }
 }
 
-/// Parses, checks and produces a program.
+/// Parses, checks and produces a program that imports nothing.
 pub fn run(src: &str, options: &RunOptions) -> Result<Model, Error> {
-    let program = parse::parse(src).map_err(Error::Program)?;
+    run_with("program", src, options, &mut import::NoImports)
+}
+
+/// Parses a program named `name` (for messages and relative imports), splices in its imports
+/// through `resolver`, checks and produces it.
+pub fn run_with(
+    name: &str,
+    src: &str,
+    options: &RunOptions,
+    resolver: &mut dyn import::Resolver,
+) -> Result<Model, Error> {
+    let (program, sources) =
+        import::load(name, src, resolver).map_err(|(ds, s)| Error::Program(ds, s))?;
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-    let compiled =
-        compile::compile(&program, src, &options.overrides, &mut rng).map_err(|e| match e {
-            compile::CompileError::Program(ds) => Error::Program(ds),
+    let line_of = |span: ast::Span| sources.line(span);
+    let compiled = compile::compile(&program, &line_of, &options.overrides, &mut rng).map_err(
+        |e| match e {
+            compile::CompileError::Program(ds) => Error::Program(ds, sources.clone()),
             compile::CompileError::Override(m) => Error::Override(m),
-        })?;
-    produce::produce(&compiled, options.limits, rng).map_err(|d| Error::Program(vec![d]))
+        },
+    )?;
+    produce::produce(&compiled, options.limits, rng)
+        .map_err(|d| Error::Program(vec![d], sources.clone()))
 }

@@ -10,11 +10,12 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::ast::{AppearanceValue, Expr, Length, OpKind, Span};
 use crate::compile::{Compiled, CompiledRule, Geometry, Succ};
+use crate::csg::{self, MeshBoolean};
 use crate::diag::Diagnostic;
 use crate::eval::{Scope, ShapeAttrs};
 use crate::partition::{self, Len};
-use crate::shape::{Primitive, ShapeError};
-use crate::tree::{Appearance, Model, Node, NodeId, NodeState};
+use crate::shape::{Primitive, ShapeError, Tessellation};
+use crate::tree::{Appearance, Model, Node, NodeId, NodeState, UniqueShape};
 
 /// Bounds on production, so a runaway grammar stops with an error instead of eating memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,6 +24,9 @@ pub struct Limits {
     pub max_depth: u32,
     /// Most nodes (terminal and not) a production may create.
     pub max_shapes: usize,
+    /// How finely curved primitives are meshed before a Boolean (§7.1.2 unique shapes are
+    /// meshes, fixed at production).
+    pub tessellation: Tessellation,
 }
 
 impl Default for Limits {
@@ -30,6 +34,7 @@ impl Default for Limits {
         Limits {
             max_depth: 100,
             max_shapes: 5_000_000,
+            tessellation: Tessellation::default(),
         }
     }
 }
@@ -87,6 +92,8 @@ pub fn produce(program: &Compiled, limits: Limits, rng: ChaCha8Rng) -> Result<Mo
 /// A shape a rule hands to one successor: where it sits in the predecessor's frame.
 struct Output {
     shape: Option<Primitive>,
+    /// A unique shape made by a Boolean (then `shape` is `None`).
+    unique: Option<UniqueShape>,
     local: Isometry3<f64>,
     successor: usize,
 }
@@ -98,10 +105,11 @@ impl Producer<'_, '_> {
             .parent
             .map_or(1, |p| self.model.nodes[p as usize].child_count);
         let t = n.world.translation.vector;
+        let solid = self.model.solid(id);
         ShapeAttrs {
-            size: n.shape.map_or([0.0; 3], |s| s.size()),
+            size: solid.map_or([0.0; 3], |s| s.size()),
             position: [t.x, t.y, t.z],
-            volume: n.shape.map_or(0.0, |s| s.volume()),
+            volume: solid.map_or(0.0, |s| s.volume()),
             depth: n.depth,
             index: n.index,
             siblings,
@@ -245,6 +253,11 @@ impl Producer<'_, '_> {
                 Succ::Terminal if void => (parent.symbol, NodeState::VoidTerminal),
                 Succ::Terminal => (parent.symbol, NodeState::Terminal),
             };
+            if let Some(u) = out.unique {
+                self.model
+                    .unique
+                    .insert(self.model.nodes.len() as NodeId, u);
+            }
             self.model.nodes.push(Node {
                 symbol,
                 rule_line: rule.line,
@@ -311,6 +324,7 @@ impl Producer<'_, '_> {
                         .map_err(|e| Diagnostic::new(e.to_string(), op.span, "invalid shape"))?;
                     // T() and R() before an I() place that shape: centre at T, orientation R.
                     outputs.push(Output {
+                        unique: None,
                         shape: Some(primitive),
                         local: Isometry3::from_parts(Translation3::from(translation), rotation),
                         successor: type_index,
@@ -367,6 +381,7 @@ impl Producer<'_, '_> {
                     let pending = Isometry3::from_parts(Translation3::from(translation), rotation);
                     outputs.extend(pieces.into_iter().zip(symbols).map(|(piece, successor)| {
                         Output {
+                            unique: None,
                             shape: Some(piece.primitive),
                             local: pending * piece.transform,
                             successor,
@@ -378,9 +393,20 @@ impl Producer<'_, '_> {
                         self.model.appearances[self.model.nodes[id as usize].appearance as usize]
                             .clone()
                     });
-                    appearance = Some(set_appearance(base, attrs_list, &mut scope)?);
+                    appearance = Some(set_appearance(base, attrs_list, rule.line, &mut scope)?);
                 }
                 OpKind::Void => void = true,
+                OpKind::Combine(kind) => {
+                    let unique = self
+                        .combine(*kind, &outputs)
+                        .map_err(|e| Diagnostic::new(e.to_string(), op.span, "this Boolean"))?;
+                    outputs = vec![Output {
+                        shape: None,
+                        unique: Some(unique),
+                        local: Isometry3::identity(),
+                        successor: 0,
+                    }];
+                }
             }
         }
         if outputs.is_empty() {
@@ -389,6 +415,7 @@ impl Producer<'_, '_> {
             let local = Isometry3::from_parts(Translation3::from(translation), rotation);
             outputs = (0..rule.successors.len())
                 .map(|successor| Output {
+                    unique: None,
                     shape,
                     local,
                     successor,
@@ -396,6 +423,24 @@ impl Producer<'_, '_> {
                 .collect();
         }
         Ok((outputs, appearance, void))
+    }
+
+    /// The unique shape of `op` over the instantiated `outputs`, in the predecessor's frame.
+    fn combine(&self, op: csg::BoolOp, outputs: &[Output]) -> Result<UniqueShape, csg::CsgError> {
+        let meshes: Vec<_> = outputs
+            .iter()
+            .filter_map(|o| {
+                let mut m = o.shape?.mesh(&self.limits.tessellation);
+                for p in &mut m.positions {
+                    let w = o.local * nalgebra::Point3::from(*p);
+                    *p = [w.x, w.y, w.z];
+                }
+                Some(m)
+            })
+            .collect();
+        let mesh = csg::Manifold.combine(op, &meshes)?;
+        let volume = mesh.signed_volume();
+        Ok(UniqueShape { op, mesh, volume })
     }
 
     fn intern_appearance(&mut self, a: Appearance) -> u32 {
@@ -408,6 +453,8 @@ impl Producer<'_, '_> {
             .chain([a.transparency, a.ambient, a.shine].iter())
             .map(|v| v.to_bits())
             .collect();
+        key.push(a.density.map_or(u64::MAX, f64::to_bits));
+        key.push(u64::from(a.texture_line));
         if let Some(t) = &a.texture {
             key.extend(t.bytes().map(u64::from));
         }
@@ -430,26 +477,37 @@ fn eval_len(scope: &mut Scope, l: &Length) -> Result<Len, Diagnostic> {
 }
 
 const ATTRIBUTES: &str =
-    "color, transparency, ambient, diffuse, specular, emissive, shine, texture";
+    "color, transparency, ambient, diffuse, specular, emissive, shine, texture, density";
 
 fn set_appearance(
     mut a: Appearance,
     list: &[(crate::ast::StrLit, AppearanceValue)],
+    line: u32,
     scope: &mut Scope,
 ) -> Result<Appearance, Diagnostic> {
     for (name, value) in list {
         let span = name.span;
         match name.value.as_str() {
             "texture" => match value {
-                AppearanceValue::Text(s) => a.texture = Some(s.value.clone()),
+                AppearanceValue::Text(s) => {
+                    a.texture = Some(s.value.clone());
+                    a.texture_line = line;
+                }
+                // Figure 7.6: one of the photographs, picked per shape by the seeded stream.
+                AppearanceValue::Texts(v) => {
+                    let pick = scope.rng.random_range(0..v.len());
+                    a.texture = Some(v[pick].value.clone());
+                    a.texture_line = line;
+                }
                 _ => {
                     return Err(Diagnostic::new(
-                        "texture takes a file name in quotes",
+                        "texture takes a file name in quotes, or a list {\"a.png\", \"b.png\"} to pick from",
                         span,
                         "texture",
                     ));
                 }
             },
+            "density" => a.density = Some(density(value, scope, span)?),
             "color" => a.color = rgb(value, scope, span)?,
             "diffuse" => a.diffuse = rgb(value, scope, span)?,
             "specular" => a.specular = rgb(value, scope, span)?,
@@ -493,6 +551,31 @@ fn unit(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64, D
             span,
             "one number",
         )),
+    }
+}
+
+/// A density in kg/m³: one positive number (an extension for masses in STATS.json).
+fn density(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64, Diagnostic> {
+    let e = match value {
+        AppearanceValue::Scalar(e) => e,
+        AppearanceValue::List(v) if v.len() == 1 => &v[0],
+        _ => {
+            return Err(Diagnostic::new(
+                "density takes one number, in kg/m³",
+                span,
+                "one number",
+            ));
+        }
+    };
+    let v = scope.eval(e)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Diagnostic::new(
+            format!("density {v} must be a positive number of kg/m³"),
+            e.span(),
+            "not a density",
+        ))
     }
 }
 

@@ -104,6 +104,7 @@ fn runaway_recursion_stops_at_the_depth_limit() {
         limits: Limits {
             max_depth: 50,
             max_shapes: 1_000_000,
+            ..Default::default()
         },
         ..Default::default()
     };
@@ -125,6 +126,7 @@ fn runaway_growth_stops_at_the_shape_limit() {
         limits: Limits {
             max_depth: 1000,
             max_shapes: 100_000,
+            ..Default::default()
         },
         ..Default::default()
     };

@@ -107,6 +107,7 @@ impl Tree {
             )],
             symbols: vec![symbol.to_owned()],
             appearances: vec![Appearance::default()],
+            ..Default::default()
         };
         Tree(model)
     }
@@ -302,6 +303,34 @@ fn example_programs_are_valid() {
         let src = std::fs::read_to_string(&path).expect("example exists");
         let model = vsg::run(&src, &vsg::RunOptions::default())
             .unwrap_or_else(|e| panic!("{}", e.render(name, &src)));
+        assert_valid(name, &model);
+    }
+}
+
+/// Imports in the library resolve inside `library/`.
+struct LibraryDir(PathBuf);
+
+impl vsg::import::Resolver for LibraryDir {
+    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
+        std::fs::read_to_string(self.0.join(path))
+            .map(|t| (path.to_string(), t))
+            .map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn library_programs_with_unique_shapes_and_imports_are_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library");
+    for name in ["gatehouse.vsg", "gothic_window.vsg", "round_tower.vsg"] {
+        let src = std::fs::read_to_string(dir.join(name)).expect("library file exists");
+        let model = vsg::run_with(
+            name,
+            &src,
+            &vsg::RunOptions::default(),
+            &mut LibraryDir(dir.clone()),
+        )
+        .unwrap_or_else(|e| panic!("{}", e.render(name, &src)));
+        assert!(!model.unique.is_empty() || name == "round_tower.vsg");
         assert_valid(name, &model);
     }
 }

@@ -149,3 +149,59 @@ p :: {j3d.terminal};
         s.volume.total
     );
 }
+
+#[test]
+fn densities_give_masses_per_symbol() {
+    let src = "Axiom :: I(\"box\",{4,3,2}){wall};\n\
+               wall :: split(\"X\",{1,~1}){stone, gap};\n\
+               stone :: appearance(\"density\", 2400){j3d.terminal};\n\
+               gap :: void(){j3d.terminal};";
+    let s = stats(src, &RunOptions::default());
+    let mass = s.mass.as_ref().expect("a density was given");
+    assert!((mass.total - 6.0 * 2400.0).abs() < 1e-9);
+    assert_eq!(mass.by_symbol.len(), 1);
+    assert!((mass.by_symbol["stone"] - 14400.0).abs() < 1e-9);
+    let json = serde_json::to_value(&s).unwrap();
+    assert_eq!(json["mass"]["by_symbol"]["stone"], 14400.0);
+    // Without densities there is no mass field.
+    let plain = stats(
+        "Axiom :: I(\"box\",{1,1,1}){j3d.terminal};",
+        &RunOptions::default(),
+    );
+    assert!(serde_json::to_value(&plain).unwrap().get("mass").is_none());
+    let bad = "Axiom :: I(\"box\",{1,1,1}) appearance(\"density\", -1){j3d.terminal};";
+    let e = vsg::run(bad, &RunOptions::default())
+        .unwrap_err()
+        .render("d.vsg", bad);
+    assert!(
+        e.contains("d.vsg:1:49: density -1 must be a positive number of kg/m³"),
+        "{e}"
+    );
+}
+
+#[test]
+fn texture_lists_pick_one_photograph_per_shape_from_the_seed() {
+    let src = "Axiom :: I(\"box\",{30,1,1}){row};\n\
+               row :: repeat(\"X\", {1}){stone};\n\
+               stone :: appearance(\"texture\", {\"a.png\", \"b.png\", \"c.png\"}){j3d.terminal};";
+    let picks = |seed| {
+        let m = vsg::run(
+            src,
+            &RunOptions {
+                seed,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        m.terminals()
+            .map(|n| m.appearance(n).texture.clone().unwrap())
+            .collect::<Vec<_>>()
+    };
+    let first = picks(3);
+    assert_eq!(first.len(), 30);
+    for name in ["a.png", "b.png", "c.png"] {
+        assert!(first.iter().any(|t| t == name), "{name} never picked");
+    }
+    assert_eq!(first, picks(3));
+    assert_ne!(first, picks(4));
+}

@@ -9,7 +9,10 @@ use json::validation::{Checked::Valid, USize64};
 use serde::Serialize;
 
 use super::shading::{ShadedMesh, shade};
-use super::{ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, unit};
+use super::{
+    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, solid_mesh, solid_volume,
+    unit,
+};
 use crate::tree::{Appearance, Model, NodeState};
 
 const GLB_MAGIC: u32 = 0x4654_6C67; // "glTF"
@@ -70,7 +73,8 @@ pub(super) fn write_glb(
 
     for (i, node) in model.nodes.iter().enumerate() {
         let mut mesh = None;
-        if let (NodeState::Terminal, Some(p)) = (node.state, &node.shape) {
+        let solid = model.solid(i as u32);
+        if let (NodeState::Terminal, Some(p)) = (node.state, &solid) {
             let key = ShapeKey::of(p);
             let slot = palette.slot(node.appearance);
             if slot as usize == b.root.materials.len() {
@@ -81,16 +85,17 @@ pub(super) fn write_glb(
             mesh = match b.meshes.get(&(key, slot)) {
                 Some(&m) => m,
                 None => {
-                    let shade = || shade(p.kind, &(geometry.mesh)(p), options.crease_angle_deg);
-                    b.add_mesh(key, p.kind.name(), slot, shade)?
+                    let crease = options.crease_angle_deg;
+                    let shade = || shade(p.name(), &solid_mesh(p, geometry), crease);
+                    b.add_mesh(key, p.name(), slot, shade)?
                 }
             };
         }
         let shape = node.shape.as_ref();
         let extras = NodeExtras {
-            shape_type: shape.map(|p| p.kind.name()),
+            shape_type: solid.map(|s| s.name()),
             params: shape.map_or(&[], |p| p.params()),
-            volume: shape.map(|p| (geometry.volume)(p)),
+            volume: solid.map(|s| solid_volume(&s, geometry)),
             rule_line: node.rule_line,
             state: node.state,
         };

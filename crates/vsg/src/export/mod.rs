@@ -10,7 +10,7 @@ mod tests;
 
 use crate::mesh::TriMesh;
 use crate::shape::{Primitive, ShapeType, Tessellation};
-use crate::tree::{Model, NodeId};
+use crate::tree::{Model, NodeId, Solid};
 
 /// How a model is exported.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,7 +44,7 @@ pub enum ExportError {
     #[error("node {node} is not a well-formed tree node: {why}")]
     BadTree { node: NodeId, why: &'static str },
     #[error("the {kind} mesh is malformed: {why}")]
-    BadMesh { kind: ShapeType, why: String },
+    BadMesh { kind: &'static str, why: String },
     #[error("the GLB would be {bytes} bytes, more than the 4 GiB the format allows")]
     TooLarge { bytes: u64 },
     #[error("cannot serialize the glTF JSON: {0}")]
@@ -149,23 +149,45 @@ pub(crate) fn check_model(model: &Model) -> Result<(), ExportError> {
     Ok(())
 }
 
-/// Bit pattern of a primitive: terminals with equal keys share one mesh.
+/// Bit pattern of a primitive (terminals with equal keys share one mesh), or the node of a
+/// unique shape (each has its own mesh).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub(crate) struct ShapeKey {
-    kind: ShapeType,
-    params: [u64; 6],
+pub(crate) enum ShapeKey {
+    Primitive { kind: ShapeType, params: [u64; 6] },
+    Unique(NodeId),
 }
 
 impl ShapeKey {
-    pub fn of(p: &Primitive) -> ShapeKey {
+    pub fn of(s: &Solid) -> ShapeKey {
+        let p = match s {
+            Solid::Primitive(p) => p,
+            Solid::Unique(id, _) => return ShapeKey::Unique(*id),
+        };
         let mut params = [0; 6];
         for (slot, v) in params.iter_mut().zip(p.params()) {
             *slot = v.to_bits();
         }
-        ShapeKey {
+        ShapeKey::Primitive {
             kind: p.kind,
             params,
         }
+    }
+}
+
+/// The mesh of a solid in its node's frame: primitives through `geometry` (so tests can inject
+/// meshes), unique shapes as produced.
+pub(crate) fn solid_mesh(s: &Solid, geometry: &Geometry) -> TriMesh {
+    match s {
+        Solid::Primitive(p) => (geometry.mesh)(p),
+        Solid::Unique(_, u) => u.mesh.clone(),
+    }
+}
+
+/// The volume of a solid: primitives through `geometry`, unique shapes' mesh volume.
+pub(crate) fn solid_volume(s: &Solid, geometry: &Geometry) -> f64 {
+    match s {
+        Solid::Primitive(p) => (geometry.volume)(p),
+        Solid::Unique(_, u) => u.volume,
     }
 }
 

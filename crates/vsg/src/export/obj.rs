@@ -8,8 +8,10 @@ use std::fmt::Write;
 use nalgebra::{Point3, Vector3};
 
 use super::shading::{ShadedMesh, shade};
-use super::{ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, unit};
-use crate::tree::{Appearance, Model, NodeState};
+use super::{
+    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, solid_mesh, unit,
+};
+use crate::tree::{Appearance, Model, NodeId, NodeState};
 
 pub(super) fn write_obj(
     model: &Model,
@@ -30,15 +32,15 @@ pub(super) fn write_obj(
     let _ = writeln!(obj, "mtllib {mtl_file_name}");
     let mut base = 1usize; // OBJ indices are 1-based and global
     for (i, node) in model.nodes.iter().enumerate() {
-        let (NodeState::Terminal, Some(p)) = (node.state, &node.shape) else {
+        let (NodeState::Terminal, Some(p)) = (node.state, model.solid(i as NodeId)) else {
             continue;
         };
-        let key = ShapeKey::of(p);
+        let key = ShapeKey::of(&p);
         let mesh = match meshes.entry(key) {
             std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
             std::collections::hash_map::Entry::Vacant(e) => e.insert(shade(
-                p.kind,
-                &(geometry.mesh)(p),
+                p.name(),
+                &solid_mesh(&p, geometry),
                 options.crease_angle_deg,
             )?),
         };

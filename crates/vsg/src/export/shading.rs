@@ -6,7 +6,6 @@ use std::collections::HashMap;
 
 use super::ExportError;
 use crate::mesh::TriMesh;
-use crate::shape::ShapeType;
 
 /// A mesh ready for drawing: every vertex has a unit normal.
 #[derive(Clone, Debug, Default)]
@@ -42,7 +41,7 @@ pub(crate) fn normalize(v: [f64; 3]) -> Option<[f64; 3]> {
 /// of the faces around its vertex whose normals lie within `crease_angle_deg` of its own
 /// face's normal; corners of one vertex with equal normals share an output vertex.
 pub(crate) fn shade(
-    kind: ShapeType,
+    kind: &'static str,
     mesh: &TriMesh,
     crease_angle_deg: f64,
 ) -> Result<ShadedMesh, ExportError> {

@@ -29,6 +29,22 @@ where
         .labelled("symbol name")
 }
 
+/// A name, possibly qualified by import aliases: `wall`, `tower.roof`, `castle.tower.roof`.
+fn qualified<'t, 's: 't, I>() -> impl Parser<'t, I, Ident, TokErr<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    ident()
+        .then(p(".").ignore_then(ident()).repeated().collect::<Vec<_>>())
+        .map(|(first, rest)| {
+            rest.into_iter().fold(first, |acc, next| Ident {
+                name: format!("{}.{}", acc.name, next.name),
+                span: acc.span.to(next.span),
+            })
+        })
+        .labelled("symbol name")
+}
+
 fn string<'t, 's: 't, I>() -> impl Parser<'t, I, StrLit, TokErr<'t, 's>> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
@@ -98,7 +114,7 @@ where
             .collect::<Vec<_>>()
             .delimited_by(p("("), p(")"));
         let index = expr.clone().delimited_by(p("["), p("]"));
-        let named = ident()
+        let named = qualified()
             .then(index.map(Suffix::Index).or(args.map(Suffix::Call)).or_not())
             .map_with(|(name, suffix), e| {
                 let span = span(e.span());
@@ -166,7 +182,14 @@ where
         .collect::<Vec<_>>()
         .delimited_by(p("{"), p("}"))
         .map_with(|items, e| Arg::List(items, span(e.span())));
-    let arg = choice((string().map(Arg::Str), list, expr().map(Arg::Expr))).labelled("argument");
+    let strings = string()
+        .separated_by(p(","))
+        .at_least(1)
+        .collect::<Vec<_>>()
+        .delimited_by(p("{"), p("}"))
+        .map_with(|items, e| Arg::Strs(items, span(e.span())));
+    let arg =
+        choice((string().map(Arg::Str), strings, list, expr().map(Arg::Expr))).labelled("argument");
     ident()
         .labelled("function name")
         .then(
@@ -200,9 +223,19 @@ where
         .then(p("."))
         .then(just(Token::Ident("terminal")))
         .map_with(|_, e| Successor::Terminal(span(e.span())));
-    let symbol = ident().map(|id| match id.name.as_str() {
-        "terminal" => Successor::Terminal(id.span),
-        _ => Successor::Symbol(id),
+    let symbol = qualified().validate(|id, _, emitter| {
+        if let Some(rest) = id.name.strip_prefix("j3d.") {
+            // `j3d.` names nothing but the terminal.
+            let at = Span::new(id.span.start + 4, id.span.end);
+            emitter.emit(Rich::custom(
+                SimpleSpan::from(at.start..at.end),
+                Diagnostic::new(format!("expected 'terminal', found '{rest}'"), at, "here"),
+            ));
+        }
+        match id.name.as_str() {
+            "terminal" => Successor::Terminal(id.span),
+            _ => Successor::Symbol(id),
+        }
     });
     j3d_terminal.or(symbol).labelled("symbol name")
 }
@@ -221,7 +254,7 @@ where
         .at_least(1)
         .collect::<Vec<_>>()
         .delimited_by(p("{"), p("}"));
-    ident()
+    qualified()
         .then(condition)
         .then(op().repeated().collect::<Vec<_>>())
         .then(successors)
@@ -266,6 +299,31 @@ where
         })
 }
 
+/// `import "file.vsg" as name;`, optionally with `(var = expr, ...)` before the `;`.
+fn import<'t, 's: 't, I>() -> impl Parser<'t, I, Import, TokErr<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let args = ident()
+        .then_ignore(p("="))
+        .then(expr())
+        .separated_by(p(","))
+        .collect::<Vec<_>>()
+        .delimited_by(p("("), p(")"));
+    just(Token::Ident("import"))
+        .ignore_then(string())
+        .then_ignore(just(Token::Ident("as")))
+        .then(ident())
+        .then(args.or_not())
+        .then_ignore(p(";"))
+        .map_with(|((path, alias), args), e| Import {
+            path,
+            alias,
+            args: args.unwrap_or_default(),
+            span: span(e.span()),
+        })
+}
+
 /// The whole program; a broken item is reported and skipped up to its `;`.
 pub fn program<'t, 's: 't, I>() -> impl Parser<'t, I, Program, TokErr<'t, 's>>
 where
@@ -278,6 +336,7 @@ where
     ));
     let item = choice((
         decl().map(Item::Decl).labelled("declaration"),
+        import().map(Item::Import).labelled("import"),
         rule().map(Item::Rule).labelled("rule"),
     ));
     item.map(Some)

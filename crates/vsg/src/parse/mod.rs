@@ -7,7 +7,7 @@
 //! assert_eq!(program.items.len(), 1);
 //!
 //! let errors = vsg::parse::parse("a::{b;").unwrap_err();
-//! assert_eq!(errors[0].message, "expected ',' or '}', found ';'");
+//! assert_eq!(errors[0].message, "expected ',', '.' or '}', found ';'");
 //! ```
 
 mod grammar;

@@ -3,6 +3,7 @@
 //! argument and builds the [`OpKind`]. A new operation is one line in [`OPS`].
 
 use crate::ast::{AppearanceValue, AxisArg, Expr, Ident, Length, OpKind, Span, StrLit};
+use crate::csg::BoolOp;
 use crate::diag::Diagnostic;
 
 /// One argument as written, before we know what the function wants.
@@ -11,6 +12,8 @@ pub enum Arg {
     Str(StrLit),
     /// `{e, ~e, ...}`: items with the span of their `~`, if any.
     List(Vec<(Option<Span>, Expr)>, Span),
+    /// `{"a.png", "b.png"}`
+    Strs(Vec<StrLit>, Span),
     Expr(Expr),
 }
 
@@ -18,7 +21,7 @@ impl Arg {
     fn span(&self) -> Span {
         match self {
             Arg::Str(s) => s.span,
-            Arg::List(_, span) => *span,
+            Arg::List(_, span) | Arg::Strs(_, span) => *span,
             Arg::Expr(e) => e.span(),
         }
     }
@@ -27,6 +30,7 @@ impl Arg {
         match self {
             Arg::Str(_) => "a string",
             Arg::List(..) => "a list",
+            Arg::Strs(..) => "a list of strings",
             Arg::Expr(_) => "an expression",
         }
     }
@@ -51,6 +55,15 @@ const OPS: &[(&str, Build)] = &[
     ("repeat", repeat),
     ("appearance", appearance),
     ("void", |c| c.arity(0).map(|_| OpKind::Void)),
+    ("union", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Union))
+    }),
+    ("intersection", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Intersection))
+    }),
+    ("difference", |c| {
+        c.arity(0).map(|_| OpKind::Combine(BoolOp::Difference))
+    }),
 ];
 
 /// Checks a parsed call against [`OPS`] and builds its operation.
@@ -105,7 +118,7 @@ fn repeat(c: Call) -> Result<OpKind, Diagnostic> {
 }
 
 fn appearance(c: Call) -> Result<OpKind, Diagnostic> {
-    if c.args.is_empty() || c.args.len() % 2 != 0 {
+    if c.args.is_empty() || !c.args.len().is_multiple_of(2) {
         return Err(c.arity_error("pairs of \"attribute\", value arguments"));
     }
     let mut pairs = Vec::new();
@@ -114,6 +127,7 @@ fn appearance(c: Call) -> Result<OpKind, Diagnostic> {
         let attr = string(attr, "appearance", i + 1, "an attribute name")?;
         let value = match value {
             Arg::Str(s) => AppearanceValue::Text(s),
+            Arg::Strs(v, _) => AppearanceValue::Texts(v),
             Arg::Expr(e) => AppearanceValue::Scalar(e),
             list => AppearanceValue::List(plain_list(list, "appearance", i + 2, "a value list")?),
         };

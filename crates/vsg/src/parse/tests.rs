@@ -313,7 +313,7 @@ fn empty_list_braces_and_comma_errors_point_at_the_token() {
     );
     assert_eq!(
         err("a::{b;"),
-        (1, 6, "expected ',' or '}', found ';'".into())
+        (1, 6, "expected ',', '.' or '}', found ';'".into())
     );
     assert_eq!(
         err("a::{};"),
@@ -329,7 +329,11 @@ fn empty_list_braces_and_comma_errors_point_at_the_token() {
     );
     assert_eq!(
         err(")"),
-        (1, 1, "expected declaration or rule, found ')'".into())
+        (
+            1,
+            1,
+            "expected declaration, import or rule, found ')'".into()
+        )
     );
     assert_eq!(
         err("a::{j3d.foo};"),
@@ -371,8 +375,7 @@ fn lexical_errors() {
 
 #[test]
 fn unknown_functions_wrong_arity_and_wrong_arguments() {
-    let unknown =
-        "unknown function 'divide'; expected one of T, R, I, split, repeat, appearance, void";
+    let unknown = "unknown function 'divide'; expected one of T, R, I, split, repeat, appearance, void, union, intersection, difference";
     assert_eq!(err("a::\n  divide(\"X\",{1}){b};"), (2, 3, unknown.into()));
     assert_eq!(
         err("a::T(1,2){c};"),

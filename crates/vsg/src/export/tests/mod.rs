@@ -206,12 +206,12 @@ fn obj_of(model: &Model) -> (String, String) {
 
 #[test]
 fn crease_angle_keeps_cylinders_smooth_and_caps_flat() {
-    let shaded = shading::shade(ShapeType::Cylinder, &prism_mesh(&boxed([1.0; 3])), 40.0).unwrap();
+    let shaded = shading::shade("cylinder", &prism_mesh(&boxed([1.0; 3])), 40.0).unwrap();
     // Each side ring vertex is shared by the sides (one smooth normal) and split from its cap.
     assert_eq!(shaded.positions.len(), 4 * 32);
     let radial = shaded.normals.iter().filter(|n| n[1].abs() < 1e-12).count();
     assert_eq!(radial, 2 * 32);
-    let faceted = shading::shade(ShapeType::Cylinder, &prism_mesh(&boxed([1.0; 3])), 5.0).unwrap();
+    let faceted = shading::shade("cylinder", &prism_mesh(&boxed([1.0; 3])), 5.0).unwrap();
     assert_eq!(faceted.positions.len(), 4 * 32 + 2 * 32);
 }
 
@@ -247,13 +247,7 @@ fn broken_references_are_errors() {
     };
     let err = super::gltf::write_glb(&castle(), &options, &geometry).unwrap_err();
     assert!(
-        matches!(
-            err,
-            ExportError::BadMesh {
-                kind: ShapeType::Box,
-                ..
-            }
-        ),
+        matches!(err, ExportError::BadMesh { kind: "box", .. }),
         "{err}"
     );
 }
