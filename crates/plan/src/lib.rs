@@ -1,1 +1,3 @@
-//! (to be written)
+//! Parsing of castle plan drawings (Sui 2011, chapter 5).
+pub mod binarize;
+pub mod thin;
