@@ -140,7 +140,7 @@ pub fn thin(m: &mut Mask) -> usize {
             }
             round += 1;
             let mut next = Vec::with_capacity(cand.len() + del.len());
-            let mut push = |i: usize, next: &mut Vec<usize>, stamp: &mut Vec<u32>| {
+            let push = |i: usize, next: &mut Vec<usize>, stamp: &mut Vec<u32>| {
                 if stamp[i] != round && m.data[i] == 1 {
                     stamp[i] = round;
                     next.push(i);
@@ -177,7 +177,7 @@ pub fn crossings(r: &[u8; 8]) -> u32 {
 /// Removes a pixel with two perpendicular on 4-neighbours when its other neighbours stay
 /// 8-connected without it (two or three neighbours in one run): the corner of a diagonal step,
 /// redundant for 8-connectivity. Sequential, so a step loses one pixel, never two.
-fn remove_staircase(m: &mut Mask) {
+pub fn remove_staircase(m: &mut Mask) {
     for i in 0..m.data.len() {
         if m.data[i] == 0 {
             continue;
