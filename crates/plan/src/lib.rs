@@ -2,3 +2,4 @@
 pub mod binarize;
 pub mod thin;
 pub mod graph;
+pub mod fit;
