@@ -21,6 +21,8 @@ pub enum Command {
     /// The Volumetric Shape Grammar (dissertation ch. 7).
     #[command(subcommand)]
     Vsg(VsgCommand),
+    /// Parse a castle plan drawing into labelled walls, rooms and towers (dissertation ch. 5).
+    Plan(PlanArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -59,6 +61,41 @@ pub struct VsgRunArgs {
     pub max_shapes: usize,
 }
 
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    /// The plan drawing (PNG, JPEG or PNM).
+    pub image: PathBuf,
+    /// The parsed plan: vertices, labelled edges with fits, labelled faces with shapes.
+    #[arg(short = 'o', long = "output", value_name = "PLAN.json")]
+    pub output: PathBuf,
+    /// 8-bit image of label indices (the legend of PLAN.json).
+    #[arg(long, value_name = "LABELS.png")]
+    pub labels: Option<PathBuf>,
+    /// The vectorised walls with their fitted lines and arcs.
+    #[arg(long, value_name = "PLAN.svg")]
+    pub svg: Option<PathBuf>,
+    /// The §5.3 extruded model as binary glTF.
+    #[arg(long, value_name = "MODEL.glb")]
+    pub model: Option<PathBuf>,
+    /// The drawing coloured by label.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Drawing scale in metres per pixel; the model comes out in metres.
+    #[arg(long, value_parser = parse_scale)]
+    pub scale: Option<f64>,
+}
+
+fn parse_scale(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("the scale must be a positive number, found '{s}'"));
+    }
+    Ok(v)
+}
+
 fn parse_assignment(s: &str) -> Result<(String, f64), String> {
     let (name, value) = s
         .split_once('=')
@@ -86,7 +123,66 @@ mod tests {
         argv.extend_from_slice(extra);
         Cli::try_parse_from(argv).map(|c| match c.command {
             Command::Vsg(VsgCommand::Run(a)) => a,
+            Command::Plan(_) => unreachable!("vsg run parsed as plan"),
         })
+    }
+
+    fn plan_args(extra: &[&str]) -> Result<PlanArgs, clap::Error> {
+        let mut argv = vec!["castellan", "plan", "p.png", "-o", "plan.json"];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Plan(a) => a,
+            Command::Vsg(_) => unreachable!("plan parsed as vsg"),
+        })
+    }
+
+    #[test]
+    fn plan_output_is_required() {
+        assert!(Cli::try_parse_from(["castellan", "plan", "p.png"]).is_err());
+        let a = plan_args(&[]).unwrap();
+        assert_eq!(a.output, PathBuf::from("plan.json"));
+        assert_eq!(a.image, PathBuf::from("p.png"));
+    }
+
+    #[test]
+    fn plan_labels_flag() {
+        assert_eq!(
+            plan_args(&["--labels", "l.png"]).unwrap().labels,
+            Some(PathBuf::from("l.png"))
+        );
+    }
+
+    #[test]
+    fn plan_svg_flag() {
+        assert_eq!(
+            plan_args(&["--svg", "p.svg"]).unwrap().svg,
+            Some(PathBuf::from("p.svg"))
+        );
+    }
+
+    #[test]
+    fn plan_model_flag() {
+        assert_eq!(
+            plan_args(&["--model", "m.glb"]).unwrap().model,
+            Some(PathBuf::from("m.glb"))
+        );
+    }
+
+    #[test]
+    fn plan_overlay_flag() {
+        assert_eq!(
+            plan_args(&["--overlay", "o.png"]).unwrap().overlay,
+            Some(PathBuf::from("o.png"))
+        );
+    }
+
+    #[test]
+    fn plan_scale_flag_is_positive() {
+        assert_eq!(plan_args(&[]).unwrap().scale, None);
+        assert_eq!(plan_args(&["--scale", "0.05"]).unwrap().scale, Some(0.05));
+        assert!(plan_args(&["--scale", "0"]).is_err());
+        assert!(plan_args(&["--scale", "-1"]).is_err());
+        assert!(plan_args(&["--scale", "nan"]).is_err());
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 mod cli;
 mod output;
+mod plan_cmd;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -13,6 +14,7 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
+        cli::Command::Plan(args) => plan_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
