@@ -41,6 +41,39 @@ pub enum Fit {
 }
 
 impl Fit {
+    /// The same model with every length multiplied by `k` (for a drawing resampled by 1/k).
+    pub fn scaled(&self, k: f64) -> Fit {
+        let m = |p: &[f64; 2]| [p[0] * k, p[1] * k];
+        match self {
+            Fit::Line { a, b, c, p0, p1, error } => Fit::Line {
+                a: *a,
+                b: *b,
+                c: c * k,
+                p0: m(p0),
+                p1: m(p1),
+                error: error * k,
+            },
+            Fit::Arc { center, radius, start, sweep, error } => Fit::Arc {
+                center: m(center),
+                radius: radius * k,
+                start: *start,
+                sweep: *sweep,
+                error: error * k,
+            },
+            Fit::Circle { center, radius, error } => Fit::Circle {
+                center: m(center),
+                radius: radius * k,
+                error: error * k,
+            },
+            Fit::Rectangle { center, size, angle, error } => Fit::Rectangle {
+                center: m(center),
+                size: m(size),
+                angle: *angle,
+                error: error * k,
+            },
+        }
+    }
+
     pub fn error(&self) -> f64 {
         match self {
             Fit::Line { error, .. }

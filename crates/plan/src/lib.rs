@@ -44,6 +44,7 @@ pub mod fit;
 pub mod graph;
 pub mod label;
 pub mod output;
+pub mod synth;
 pub mod thin;
 
 use image::DynamicImage;
@@ -64,6 +65,10 @@ pub struct Options {
     pub face_tolerance: f64,
     /// Larger images are refused (pixels).
     pub max_pixels: u64,
+    /// Drawings whose longer side is under this many pixels are parsed enlarged (by an integer
+    /// factor, at most 2 so that 1-px grid lines stay thinner than the 3 × 3 element) so that
+    /// the open/close of §5.1.2 keeps its meaning; 0 disables.
+    pub upsample_below: u32,
 }
 
 impl Default for Options {
@@ -72,6 +77,7 @@ impl Default for Options {
             min_region: 0.0005,
             face_tolerance: 0.06,
             max_pixels: 40_000_000,
+            upsample_below: 1000,
         }
     }
 }
@@ -139,6 +145,11 @@ impl ParsedPlan {
 }
 
 /// Runs §5.1.2 – §5.1.6 on a drawing.
+///
+/// Departure from §5.1.2, measured on real drawings (docs/plan.md): the text's 300-dpi scans
+/// have walls many pixels thick, but plans from books and the web are ~500 px wide with walls
+/// 2–4 px thick, which the 3 × 3 opening erases. Such drawings are enlarged by an integer
+/// factor (bilinear) before parsing and every result is mapped back to the input's pixels.
 pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanError> {
     let (w, h) = (image.width(), image.height());
     if w == 0 || h == 0 {
@@ -148,7 +159,78 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
         return Err(PlanError::TooLarge(w, h, opts.max_pixels));
     }
     let grey = image.to_luma8();
-    let (bin, pre) = binarize::preprocess(&grey, opts.min_region);
+    let long = w.max(h);
+    let k = if long < opts.upsample_below {
+        opts.upsample_below.div_ceil(long).min(2)
+    } else {
+        1
+    };
+    if k == 1 {
+        return parse_grey(&grey, opts);
+    }
+    let big = image::imageops::resize(&grey, w * k, h * k, image::imageops::FilterType::Triangle);
+    Ok(shrink(parse_grey(&big, opts)?, k, w, h))
+}
+
+/// Maps a plan parsed at `k` times the size back to the `w` × `h` input.
+fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
+    let kf = f64::from(k);
+    let inv = 1.0 / kf;
+    let at = |x: u32, y: u32| ((y * k + k / 2) * p.width + x * k + k / 2) as usize;
+    let mut labels = Vec::with_capacity((w * h) as usize);
+    let mut walls = Mask::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            labels.push(p.labels[at(x, y)]);
+            walls.data[(y * w + x) as usize] = p.walls.data[at(x, y)];
+        }
+    }
+    let small = |v: f64| (v + 0.5) * inv - 0.5;
+    let edges = p
+        .edges
+        .into_iter()
+        .map(|e| {
+            let mut points: Vec<(u32, u32)> = e.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
+            points.dedup();
+            PlanEdge {
+                points,
+                fit: e.fit.map(|f| f.scaled(inv)),
+                thickness: e.thickness * inv,
+                ..e
+            }
+        })
+        .collect();
+    let faces = p
+        .faces
+        .into_iter()
+        .map(|f| PlanFace {
+            area: (f.area as f64 / (kf * kf)).round() as usize,
+            centroid: [small(f.centroid[0]), small(f.centroid[1])],
+            shape: f.shape.map(|s| s.scaled(inv)),
+            ..f
+        })
+        .collect();
+    ParsedPlan {
+        width: w,
+        height: h,
+        vertices: p
+            .vertices
+            .into_iter()
+            .map(|v| Vertex { x: small(v.x), y: small(v.y) })
+            .collect(),
+        edges,
+        faces,
+        labels,
+        walls,
+        towers: p.towers,
+        pre: p.pre,
+        warnings: p.warnings,
+    }
+}
+
+fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, PlanError> {
+    let (w, h) = grey.dimensions();
+    let (bin, pre) = binarize::preprocess(grey, opts.min_region);
     if pre.wall_pixels == 0 {
         return Err(PlanError::NoWalls(pre.threshold));
     }
