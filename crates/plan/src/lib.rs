@@ -172,6 +172,15 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     Ok(shrink(parse_grey(&big, opts)?, k, w, h))
 }
 
+/// An edge's chain with its two vertices at the ends (so a one-pixel chain still fits a line).
+fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
+    let v = |i: usize| [g.vertices[i].x, g.vertices[i].y];
+    let mut pts = vec![v(e.from)];
+    pts.extend(e.points.iter().map(|p| [p.0 as f64, p.1 as f64]));
+    pts.push(v(e.to));
+    pts
+}
+
 /// Maps a plan parsed at `k` times the size back to the `w` × `h` input.
 fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
     let kf = f64::from(k);
@@ -309,7 +318,7 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
             from: e.from,
             to: e.to,
             label: labelling.edges[k],
-            fit: fit::fit_edge(&e.points.iter().map(to_f).collect::<Vec<_>>()),
+            fit: fit::fit_edge(&chain_with_ends(&g, e)),
             points: e.points.clone(),
             thickness: thickness[k],
         })

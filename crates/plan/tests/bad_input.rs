@@ -61,8 +61,7 @@ fn photo_like_noise_does_not_panic() {
 
 #[test]
 fn small_drawing_with_thin_walls_is_enlarged_and_parsed() {
-    // The synthetic castle at 40 %: 4-px curtain walls that a 3 × 3 opening would erase at
-    // the drawing's own size.
+    // The synthetic castle at 40 % (4-px curtain walls, 360 px wide), enlarged ×2 inside.
     let (img, truth) = plan::synth::castle(2, 0.4, 360, 280);
     let img = DynamicImage::ImageLuma8(img);
     let p = parse(&img, &Options::default()).unwrap();
