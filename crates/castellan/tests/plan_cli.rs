@@ -12,7 +12,8 @@ fn castellan() -> Command {
 #[test]
 fn parses_sully_and_writes_every_output() {
     let dir = tempfile::tempdir().unwrap();
-    let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plans/sully-sur-loire.png");
+    let input =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plans/sully-sur-loire.png");
     let out = |n: &str| dir.path().join(n);
     castellan()
         .arg("plan")
@@ -37,17 +38,33 @@ fn parses_sully_and_writes_every_output() {
     assert_eq!(names[0], "castle_surroundings");
     assert_eq!(names[4], "tower_room");
     assert_eq!(names[10], "unknown_wall");
-    let (w, h) = (doc["width"].as_u64().unwrap(), doc["height"].as_u64().unwrap());
+    let (w, h) = (
+        doc["width"].as_u64().unwrap(),
+        doc["height"].as_u64().unwrap(),
+    );
     let labels = image::open(out("labels.png")).unwrap().to_luma8();
-    assert_eq!((u64::from(labels.width()), u64::from(labels.height())), (w, h));
+    assert_eq!(
+        (u64::from(labels.width()), u64::from(labels.height())),
+        (w, h)
+    );
     assert!(labels.pixels().all(|p| p[0] < 11));
-    assert!(doc["faces"].as_array().unwrap().iter().any(|f| f["label"] == "courtyard"));
+    assert!(
+        doc["faces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f["label"] == "courtyard")
+    );
     assert!(doc["towers"].as_u64().unwrap() >= 3);
     for e in doc["edges"].as_array().unwrap() {
-        assert!(e["points"].as_array().unwrap().len() >= 1);
+        assert!(!e["points"].as_array().unwrap().is_empty());
         assert!(["line", "arc"].contains(&e["fit"]["type"].as_str().unwrap()));
     }
-    assert!(std::fs::read_to_string(out("plan.svg")).unwrap().starts_with("<svg"));
+    assert!(
+        std::fs::read_to_string(out("plan.svg"))
+            .unwrap()
+            .starts_with("<svg")
+    );
     assert_eq!(&std::fs::read(out("model.glb")).unwrap()[..4], b"glTF");
     assert_eq!(image::open(out("overlay.png")).unwrap().width() as u64, w);
 }
@@ -68,7 +85,10 @@ fn blank_page_fails_with_one_message_and_no_output() {
         .assert()
         .failure();
     let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
-    assert!(err.contains("blank.png") && err.contains("no walls"), "{err}");
+    assert!(
+        err.contains("blank.png") && err.contains("no walls"),
+        "{err}"
+    );
     assert!(!json.exists());
 }
 

@@ -27,7 +27,9 @@ fn main() {
     let (mut sum_iou, mut closed, mut n) = (0.0, 0, 0);
     for id in &ids {
         let img = image::open(dir.join(format!("{id}.jpg"))).unwrap();
-        let mask = image::open(dir.join(format!("{id}_wall.png"))).unwrap().to_luma8();
+        let mask = image::open(dir.join(format!("{id}_wall.png")))
+            .unwrap()
+            .to_luma8();
         let t = std::time::Instant::now();
         let p = match plan::parse(&img, &plan::Options::default()) {
             Ok(p) => p,
@@ -54,8 +56,14 @@ fn main() {
         let prec = tp as f64 / (tp + fp).max(1) as f64;
         let rec = tp as f64 / (tp + fneg).max(1) as f64;
         let iou = tp as f64 / (tp + fp + fneg).max(1) as f64;
-        let court = p.faces.iter().any(|f| f.label == plan::label::Label::Courtyard);
-        println!("{id}\t{prec:.3}\t{rec:.3}\t{iou:.3}\t{court}\t{}\t{ms:.0}", p.faces.len());
+        let court = p
+            .faces
+            .iter()
+            .any(|f| f.label == plan::label::Label::Courtyard);
+        println!(
+            "{id}\t{prec:.3}\t{rec:.3}\t{iou:.3}\t{court}\t{}\t{ms:.0}",
+            p.faces.len()
+        );
         sum_iou += iou;
         closed += usize::from(court);
         n += 1;

@@ -34,7 +34,11 @@ pub fn threshold_level(grey: &GrayImage) -> u8 {
 /// Binary image (255 = wall) from a grey scan.
 pub fn binarize(grey: &GrayImage, level: u8) -> GrayImage {
     GrayImage::from_fn(grey.width(), grey.height(), |x, y| {
-        Luma([if grey.get_pixel(x, y)[0] < level { 255 } else { 0 }])
+        Luma([if grey.get_pixel(x, y)[0] < level {
+            255
+        } else {
+            0
+        }])
     })
 }
 
@@ -123,7 +127,9 @@ pub fn preprocess(grey: &GrayImage, min_region: f64) -> (GrayImage, PreStats) {
             .bbox
             .iter()
             .enumerate()
-            .map(|(i, c)| i == big || (c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3]))
+            .map(|(i, c)| {
+                i == big || (c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3])
+            })
             .collect();
         stats.dropped_outside = keep.iter().skip(1).filter(|k| !**k).count();
         for (p, &l) in img.pixels_mut().zip(&black.labels) {
@@ -144,7 +150,11 @@ mod tests {
         let h = rows.len() as u32;
         let w = rows[0].len() as u32;
         GrayImage::from_fn(w, h, |x, y| {
-            Luma([if rows[y as usize].as_bytes()[x as usize] == b'#' { 10 } else { 240 }])
+            Luma([if rows[y as usize].as_bytes()[x as usize] == b'#' {
+                10
+            } else {
+                240
+            }])
         })
     }
 

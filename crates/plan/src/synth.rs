@@ -8,6 +8,9 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::label::Label;
 
+/// True labels at known points of a drawing.
+pub type Truth = Vec<((u32, u32), Label)>;
+
 pub const INK: Luma<u8> = Luma([20]);
 
 /// A sheet of paper to draw walls on.
@@ -81,7 +84,7 @@ impl Canvas {
 /// two, a great hall, a chapel and three small rooms along the south wall; 1-px grid lines
 /// every 100 px, letter-sized blobs and 400 specks over it all. Returns the drawing and the
 /// true label at known points.
-pub fn castle(seed: u64, scale: f64, width: u32, height: u32) -> (GrayImage, Vec<((u32, u32), Label)>) {
+pub fn castle(seed: u64, scale: f64, width: u32, height: u32) -> (GrayImage, Truth) {
     let mut c = Canvas::new(width, height);
     let s = scale;
     let p = |x: f64, y: f64| (x * s, y * s);
@@ -117,7 +120,13 @@ pub fn castle(seed: u64, scale: f64, width: u32, height: u32) -> (GrayImage, Vec
             c.put(x, y, INK);
         }
     }
-    for (x, y) in [(300.0, 300.0), (330.0, 300.0), (500.0, 250.0), (320.0, 500.0), (640.0, 250.0)] {
+    for (x, y) in [
+        (300.0, 300.0),
+        (330.0, 300.0),
+        (500.0, 250.0),
+        (320.0, 500.0),
+        (640.0, 250.0),
+    ] {
         let (x, y) = p(x, y);
         c.blob(x as i64, y as i64, 7, 11);
     }

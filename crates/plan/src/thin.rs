@@ -171,7 +171,9 @@ pub fn thin(m: &mut Mask) -> usize {
 
 /// Crossing number: off→on transitions around the 8-neighbourhood.
 pub fn crossings(r: &[u8; 8]) -> u32 {
-    (0..8).map(|k| u32::from(r[k] == 0 && r[(k + 1) % 8] == 1)).sum()
+    (0..8)
+        .map(|k| u32::from(r[k] == 0 && r[(k + 1) % 8] == 1))
+        .sum()
 }
 
 /// Removes a pixel with two perpendicular on 4-neighbours when its other neighbours stay

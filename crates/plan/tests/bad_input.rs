@@ -19,7 +19,10 @@ fn blank_page_is_an_error_saying_no_walls() {
 #[test]
 fn empty_and_huge_images_are_refused_before_work() {
     let empty = DynamicImage::ImageLuma8(GrayImage::new(0, 5));
-    assert!(matches!(parse(&empty, &Options::default()), Err(PlanError::Empty(0, 5))));
+    assert!(matches!(
+        parse(&empty, &Options::default()),
+        Err(PlanError::Empty(0, 5))
+    ));
     let opts = Options {
         max_pixels: 10_000,
         ..Default::default()
@@ -38,7 +41,9 @@ fn open_enclosure_is_a_partial_result_with_a_warning() {
     c.wall((240.0, 240.0), (240.0, 60.0), 10.0);
     let p = parse(&DynamicImage::ImageLuma8(c.0), &Options::default()).unwrap();
     assert!(
-        p.warnings.iter().any(|w| w.contains("no closed outer wall")),
+        p.warnings
+            .iter()
+            .any(|w| w.contains("no closed outer wall")),
         "{:?}",
         p.warnings
     );
@@ -66,6 +71,9 @@ fn small_drawing_with_thin_walls_is_enlarged_and_parsed() {
     let img = DynamicImage::ImageLuma8(img);
     let p = parse(&img, &Options::default()).unwrap();
     assert_eq!(p.towers, 6, "{:?}", p.warnings);
-    let right = truth.iter().filter(|(xy, l)| p.label_at(xy.0, xy.1) == *l).count();
+    let right = truth
+        .iter()
+        .filter(|(xy, l)| p.label_at(xy.0, xy.1) == *l)
+        .count();
     assert!(right + 3 >= truth.len(), "{right} of {}", truth.len());
 }

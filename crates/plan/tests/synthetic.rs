@@ -19,8 +19,8 @@ fn parse(img: GrayImage) -> plan::ParsedPlan {
 }
 
 /// One parse shared by the tests (a debug build parses a 900 × 700 sheet in a few seconds).
-fn parsed() -> &'static (plan::ParsedPlan, Vec<((u32, u32), Label)>) {
-    static P: OnceLock<(plan::ParsedPlan, Vec<((u32, u32), Label)>)> = OnceLock::new();
+fn parsed() -> &'static (plan::ParsedPlan, plan::synth::Truth) {
+    static P: OnceLock<(plan::ParsedPlan, plan::synth::Truth)> = OnceLock::new();
     P.get_or_init(|| {
         let (img, truth) = castle(7, 1.0, 900, 700);
         (parse(img), truth)
@@ -31,7 +31,11 @@ fn parsed() -> &'static (plan::ParsedPlan, Vec<((u32, u32), Label)>) {
 fn castle_towers_and_labels_at_known_points() {
     let (p, truth) = parsed();
     assert_eq!(p.towers, 6, "towers; warnings {:?}", p.warnings);
-    let towers = p.faces.iter().filter(|f| f.label == Label::TowerRoom).count();
+    let towers = p
+        .faces
+        .iter()
+        .filter(|f| f.label == Label::TowerRoom)
+        .count();
     assert_eq!(towers, 6);
     let wrong: Vec<_> = truth
         .iter()
@@ -50,7 +54,14 @@ fn round_tower_rooms_fit_circles() {
         .filter(|f| f.label == Label::TowerRoom)
         .filter(|f| matches!(f.shape, Some(plan::fit::Fit::Circle { .. })))
         .count();
-    assert!(circles >= 4, "{:?}", p.faces.iter().map(|f| (&f.label, &f.shape)).collect::<Vec<_>>());
+    assert!(
+        circles >= 4,
+        "{:?}",
+        p.faces
+            .iter()
+            .map(|f| (&f.label, &f.shape))
+            .collect::<Vec<_>>()
+    );
 }
 
 #[test]
@@ -60,6 +71,10 @@ fn every_pixel_has_a_legend_label() {
     assert!(p.labels.iter().all(|&l| (l as usize) < Label::ALL.len()));
     // Walls take wall labels, open space room labels.
     for (i, &l) in p.labels.iter().enumerate() {
-        assert_eq!(Label::ALL[l as usize].is_wall(), p.walls.data[i] == 1, "pixel {i}");
+        assert_eq!(
+            Label::ALL[l as usize].is_wall(),
+            p.walls.data[i] == 1,
+            "pixel {i}"
+        );
     }
 }
