@@ -109,12 +109,17 @@ pub fn preprocess(grey: &GrayImage, min_region: f64) -> (GrayImage, PreStats) {
     // (4): open then close with a 3 × 3 element removes lines thinner than 3 pixels.
     img = close(&open(&img, Norm::LInf, 1), Norm::LInf, 1);
     // (5): black regions under 0.05 %.
-    let black = components(&img, 255, Connectivity::Eight);
+    let mut black = components(&img, 255, Connectivity::Eight);
     stats.removed_black = remove_small(&mut img, &black, min, 0);
+    // The regions left keep their labels; the removed ones no longer count.
+    for (i, s) in black.sizes.iter_mut().enumerate() {
+        if i > 0 && *s < min {
+            *s = 0;
+        }
+    }
     // Keep the castle: the largest black region and whatever lies within its bounding box
     // (free-standing keeps, inner wards); legends, scale bars and north arrows outside it go.
     // Addition to §5.1.2, which left this to the user's clean-up (§5.1.1, §5.2 item 2).
-    let black = components(&img, 255, Connectivity::Eight);
     if let Some((big, _)) = black
         .sizes
         .iter()
@@ -131,7 +136,9 @@ pub fn preprocess(grey: &GrayImage, min_region: f64) -> (GrayImage, PreStats) {
                 i == big || (c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3])
             })
             .collect();
-        stats.dropped_outside = keep.iter().skip(1).filter(|k| !**k).count();
+        stats.dropped_outside = (1..keep.len())
+            .filter(|&i| !keep[i] && black.sizes[i] > 0)
+            .count();
         for (p, &l) in img.pixels_mut().zip(&black.labels) {
             if l > 0 && !keep[l as usize] {
                 p[0] = 0;

@@ -264,8 +264,10 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
             255
         }])
     });
-    let in_wall = distance_transform(&open_fg, Norm::L2);
-    let in_open = distance_transform(&bin, Norm::L2);
+    let (in_wall, in_open) = rayon::join(
+        || distance_transform(&open_fg, Norm::L2),
+        || distance_transform(&bin, Norm::L2),
+    );
 
     let wu = w as usize;
     let mut infos = vec![FaceInfo::default(); nf];
