@@ -6,6 +6,27 @@ use std::time::Instant;
 fn main() {
     let (img, _) = plan::synth::castle(1, 2.8, 3000, 2000);
     let t = Instant::now();
+    let level = plan::binarize::threshold_level(&img);
+    let b = plan::binarize::binarize(&img, level);
+    println!("  threshold {:?}", t.elapsed());
+    let t2 = Instant::now();
+    let oc = imageproc::morphology::close(
+        &imageproc::morphology::open(&b, imageproc::distance_transform::Norm::LInf, 1),
+        imageproc::distance_transform::Norm::LInf,
+        1,
+    );
+    println!("  open + close {:?}", t2.elapsed());
+    let t2 = Instant::now();
+    let _ = imageproc::region_labelling::connected_components(
+        &oc,
+        imageproc::region_labelling::Connectivity::Eight,
+        image::Luma([0u8]),
+    );
+    println!(
+        "  one imageproc connected-components pass (flood fill used instead) {:?}",
+        t2.elapsed()
+    );
+    let t = Instant::now();
     let (bin, _) = plan::binarize::preprocess(&img, 0.0005);
     println!("preprocess {:?}", t.elapsed());
     let t = Instant::now();
