@@ -78,3 +78,27 @@ fn every_pixel_has_a_legend_label() {
         );
     }
 }
+
+#[test]
+fn extrusion_program_runs_and_towers_stand_highest() {
+    let (p, _) = parsed();
+    let src = plan::extrude::to_vsg(p, 0.1, &plan::extrude::Heights::metres());
+    let model = vsg::run(&src, &vsg::RunOptions::default()).unwrap();
+    let stats = vsg::stats::Stats::of(&model, &vsg::shape::Tessellation::default());
+    for name in [
+        "tower_wall",
+        "castle_outer_wall",
+        "great_hall_wall",
+        "tower_room",
+    ] {
+        assert!(
+            stats.by_symbol.get(name).copied().unwrap_or(0) > 0,
+            "{name}: {:?}",
+            stats.by_symbol
+        );
+    }
+    // The surroundings stay at ground level: never extruded.
+    assert!(!stats.by_symbol.contains_key("castle_surroundings"));
+    // Walls are boxes of their class height: 20 m towers (centre at 10 m), 12 m outer walls.
+    assert!(src.contains(", 10.0000, ") && src.contains(", 6.0000, "));
+}
