@@ -27,6 +27,8 @@ pub enum Command {
     /// Modified repeatability rate (§2.2) and detections per image over image sequences with
     /// Oxford-style homographies (H1to2p ... H1to6p), for IPFIT and, optionally, peer detectors.
     CornersEval(CornersEvalArgs),
+    /// Parse a castle plan drawing into labelled walls, rooms and towers (dissertation ch. 5).
+    Plan(crate::plan_cmd::PlanArgs),
 }
 
 #[derive(Debug, Subcommand)]

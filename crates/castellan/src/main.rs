@@ -4,6 +4,7 @@
 mod cli;
 mod corners_cmd;
 mod output;
+mod plan_cmd;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -16,6 +17,7 @@ fn main() -> ExitCode {
         cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
         cli::Command::Corners(args) => corners_cmd::run(&args),
         cli::Command::CornersEval(args) => corners_cmd::eval(&args),
+        cli::Command::Plan(args) => plan_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

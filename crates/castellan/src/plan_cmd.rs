@@ -1,0 +1,191 @@
+//! `castellan plan`: read a plan drawing, parse it (dissertation ch. 5), and write PLAN.json,
+//! LABELS.png, the label overlay, the vector SVG and the extruded glTF model.
+
+use std::io::Cursor;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+
+use anyhow::{Context, Result, anyhow};
+
+use crate::output::Outputs;
+
+fn png(img: &image::DynamicImage, what: &std::path::Path) -> Result<Vec<u8>> {
+    let mut buf = Cursor::new(Vec::new());
+    img.write_to(&mut buf, image::ImageFormat::Png)
+        .with_context(|| format!("cannot encode {}", what.display()))?;
+    Ok(buf.into_inner())
+}
+
+pub fn run(args: &PlanArgs) -> Result<()> {
+    let file = args.image.display().to_string();
+    let img = image::ImageReader::open(&args.image)
+        .with_context(|| format!("cannot read {file}"))?
+        .with_guessed_format()
+        .with_context(|| format!("cannot read {file}"))?
+        .decode()
+        .with_context(|| format!("{file}: not a readable image"))?;
+    let started = Instant::now();
+    let parsed =
+        plan::parse(&img, &plan::Options::default()).map_err(|e| anyhow!("{file}: {e}"))?;
+    let elapsed = started.elapsed();
+
+    let mut outputs = Outputs::default();
+    let doc = plan::output::plan_json(&parsed, args.scale);
+    outputs.add(&args.output, serde_json::to_vec_pretty(&doc)?);
+    if let Some(path) = &args.labels {
+        let labels = image::DynamicImage::ImageLuma8(plan::output::labels_image(&parsed));
+        outputs.add(path, png(&labels, path)?);
+    }
+    if let Some(path) = &args.overlay {
+        let over = plan::output::overlay(&parsed, &img.to_luma8());
+        outputs.add(path, png(&image::DynamicImage::ImageRgb8(over), path)?);
+    }
+    if let Some(path) = &args.svg {
+        outputs.add(path, plan::output::svg(&parsed).into_bytes());
+    }
+    if let Some(path) = &args.model {
+        // Without a scale, heights are in pixels: 1 m taken as 1/100 of the castle's size.
+        let (scale, heights) = match args.scale {
+            Some(s) => (s, plan::extrude::Heights::metres()),
+            None => {
+                let size = f64::from(parsed.width.max(parsed.height));
+                (1.0, plan::extrude::Heights::scaled(size / 100.0))
+            }
+        };
+        let src = plan::extrude::to_vsg(&parsed, scale, &heights);
+        let model = vsg::run(&src, &vsg::RunOptions::default()).map_err(|e| {
+            anyhow!(
+                "{}: internal error in the extrusion program: {}",
+                path.display(),
+                e.render("extrusion.vsg", &src).trim_end()
+            )
+        })?;
+        let glb = vsg::export::to_glb(&model, &vsg::export::ExportOptions::default())
+            .with_context(|| format!("cannot export {}", path.display()))?;
+        outputs.add(path, glb);
+    }
+    outputs.commit()?;
+    let count = |l: plan::label::Label| parsed.faces.iter().filter(|f| f.label == l).count();
+    eprintln!(
+        "{file}: {} x {} px, {} vertices, {} walls, {} faces ({} tower rooms), {} towers; parsed in {:.0} ms, written to {}",
+        parsed.width,
+        parsed.height,
+        parsed.vertices.len(),
+        parsed.edges.len(),
+        parsed.faces.len(),
+        count(plan::label::Label::TowerRoom),
+        parsed.towers,
+        elapsed.as_secs_f64() * 1e3,
+        args.output.display()
+    );
+    for w in &parsed.warnings {
+        eprintln!("{file}: warning: {w}");
+    }
+    Ok(())
+}
+
+/// `castellan plan` flags.
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    /// The plan drawing (PNG, JPEG or PNM).
+    pub image: PathBuf,
+    /// The parsed plan: vertices, labelled edges with fits, labelled faces with shapes.
+    #[arg(short = 'o', long = "output", value_name = "PLAN.json")]
+    pub output: PathBuf,
+    /// 8-bit image of label indices (the legend of PLAN.json).
+    #[arg(long, value_name = "LABELS.png")]
+    pub labels: Option<PathBuf>,
+    /// The vectorised walls with their fitted lines and arcs.
+    #[arg(long, value_name = "PLAN.svg")]
+    pub svg: Option<PathBuf>,
+    /// The §5.3 extruded model as binary glTF.
+    #[arg(long, value_name = "MODEL.glb")]
+    pub model: Option<PathBuf>,
+    /// The drawing coloured by label.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Drawing scale in metres per pixel; the model comes out in metres.
+    #[arg(long, value_parser = parse_scale)]
+    pub scale: Option<f64>,
+}
+
+fn parse_scale(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("the scale must be a positive number, found '{s}'"));
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use std::path::PathBuf;
+
+    use clap::Parser;
+
+    use super::PlanArgs;
+    use crate::cli::{Cli, Command};
+
+    fn plan_args(extra: &[&str]) -> Result<PlanArgs, clap::Error> {
+        let mut argv = vec!["castellan", "plan", "p.png", "-o", "plan.json"];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Plan(a) => a,
+            _ => unreachable!("plan parsed as another command"),
+        })
+    }
+
+    #[test]
+    fn plan_output_is_required() {
+        assert!(Cli::try_parse_from(["castellan", "plan", "p.png"]).is_err());
+        let a = plan_args(&[]).unwrap();
+        assert_eq!(a.output, PathBuf::from("plan.json"));
+        assert_eq!(a.image, PathBuf::from("p.png"));
+    }
+
+    #[test]
+    fn plan_labels_flag() {
+        assert_eq!(
+            plan_args(&["--labels", "l.png"]).unwrap().labels,
+            Some(PathBuf::from("l.png"))
+        );
+    }
+
+    #[test]
+    fn plan_svg_flag() {
+        assert_eq!(
+            plan_args(&["--svg", "p.svg"]).unwrap().svg,
+            Some(PathBuf::from("p.svg"))
+        );
+    }
+
+    #[test]
+    fn plan_model_flag() {
+        assert_eq!(
+            plan_args(&["--model", "m.glb"]).unwrap().model,
+            Some(PathBuf::from("m.glb"))
+        );
+    }
+
+    #[test]
+    fn plan_overlay_flag() {
+        assert_eq!(
+            plan_args(&["--overlay", "o.png"]).unwrap().overlay,
+            Some(PathBuf::from("o.png"))
+        );
+    }
+
+    #[test]
+    fn plan_scale_flag_is_positive() {
+        assert_eq!(plan_args(&[]).unwrap().scale, None);
+        assert_eq!(plan_args(&["--scale", "0.05"]).unwrap().scale, Some(0.05));
+        assert!(plan_args(&["--scale", "0"]).is_err());
+        assert!(plan_args(&["--scale", "-1"]).is_err());
+        assert!(plan_args(&["--scale", "nan"]).is_err());
+    }
+}

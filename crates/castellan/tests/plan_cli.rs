@@ -1,0 +1,109 @@
+//! `castellan plan` as a user runs it on a shipped public-domain drawing: every output appears
+//! and follows the PLAN.json / LABELS.png contract; bad input gives one message and no file.
+
+use std::path::Path;
+
+use assert_cmd::Command;
+
+fn castellan() -> Command {
+    Command::cargo_bin("castellan").unwrap()
+}
+
+#[test]
+fn parses_sully_and_writes_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let input =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plans/sully-sur-loire.png");
+    let out = |n: &str| dir.path().join(n);
+    castellan()
+        .arg("plan")
+        .arg(&input)
+        .arg("-o")
+        .arg(out("plan.json"))
+        .arg("--labels")
+        .arg(out("labels.png"))
+        .arg("--overlay")
+        .arg(out("overlay.png"))
+        .arg("--svg")
+        .arg(out("plan.svg"))
+        .arg("--model")
+        .arg(out("model.glb"))
+        .assert()
+        .success();
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out("plan.json")).unwrap()).unwrap();
+    let names: Vec<&str> = (0..11)
+        .map(|i| doc["legend"][i.to_string()].as_str().unwrap())
+        .collect();
+    assert_eq!(names[0], "castle_surroundings");
+    assert_eq!(names[4], "tower_room");
+    assert_eq!(names[10], "unknown_wall");
+    let (w, h) = (
+        doc["width"].as_u64().unwrap(),
+        doc["height"].as_u64().unwrap(),
+    );
+    let labels = image::open(out("labels.png")).unwrap().to_luma8();
+    assert_eq!(
+        (u64::from(labels.width()), u64::from(labels.height())),
+        (w, h)
+    );
+    assert!(labels.pixels().all(|p| p[0] < 11));
+    assert!(
+        doc["faces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f["label"] == "courtyard")
+    );
+    assert!(doc["towers"].as_u64().unwrap() >= 3);
+    for e in doc["edges"].as_array().unwrap() {
+        assert!(!e["points"].as_array().unwrap().is_empty());
+        assert!(["line", "arc"].contains(&e["fit"]["type"].as_str().unwrap()));
+    }
+    assert!(
+        std::fs::read_to_string(out("plan.svg"))
+            .unwrap()
+            .starts_with("<svg")
+    );
+    assert_eq!(&std::fs::read(out("model.glb")).unwrap()[..4], b"glTF");
+    assert_eq!(image::open(out("overlay.png")).unwrap().width() as u64, w);
+}
+
+#[test]
+fn blank_page_fails_with_one_message_and_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let blank = dir.path().join("blank.png");
+    image::GrayImage::from_pixel(120, 80, image::Luma([250]))
+        .save(&blank)
+        .unwrap();
+    let json = dir.path().join("plan.json");
+    let assert = castellan()
+        .arg("plan")
+        .arg(&blank)
+        .arg("-o")
+        .arg(&json)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(
+        err.contains("blank.png") && err.contains("no walls"),
+        "{err}"
+    );
+    assert!(!json.exists());
+}
+
+#[test]
+fn unreadable_image_names_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("notes.png");
+    std::fs::write(&bad, b"not an image").unwrap();
+    let assert = castellan()
+        .arg("plan")
+        .arg(&bad)
+        .arg("-o")
+        .arg(dir.path().join("p.json"))
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(err.contains("notes.png"), "{err}");
+}

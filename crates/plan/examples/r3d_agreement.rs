@@ -1,0 +1,75 @@
+//! Wall-pixel agreement with the R3D / DeepFloorplan wall masks (research data, read from
+//! `../shared/data`, never copied): for each plan, precision, recall and IoU of the pixels
+//! labelled as walls against `<id>_wall.png`, and whether a courtyard (closed outer wall) was
+//! found. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT]`.
+
+use std::path::PathBuf;
+
+fn main() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
+    let limit: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(usize::MAX);
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        eprintln!("skipped: {} not found", dir.display());
+        return;
+    };
+    let mut ids: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter_map(|n| n.strip_suffix(".jpg").map(str::to_string))
+        .collect();
+    ids.sort();
+    ids.truncate(limit);
+    println!("id\tprecision\trecall\tiou\tcourtyard\tfaces\tms");
+    let (mut sum_iou, mut closed, mut n) = (0.0, 0, 0);
+    for id in &ids {
+        let img = image::open(dir.join(format!("{id}.jpg"))).unwrap();
+        let mask = image::open(dir.join(format!("{id}_wall.png")))
+            .unwrap()
+            .to_luma8();
+        let t = std::time::Instant::now();
+        let p = match plan::parse(&img, &plan::Options::default()) {
+            Ok(p) => p,
+            Err(e) => {
+                println!("{id}\terror: {e}");
+                n += 1;
+                continue;
+            }
+        };
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        let (mut tp, mut fp, mut fneg) = (0usize, 0usize, 0usize);
+        for y in 0..p.height.min(mask.height()) {
+            for x in 0..p.width.min(mask.width()) {
+                let ours = p.label_at(x, y).is_wall();
+                let theirs = mask.get_pixel(x, y)[0] >= 128;
+                match (ours, theirs) {
+                    (true, true) => tp += 1,
+                    (true, false) => fp += 1,
+                    (false, true) => fneg += 1,
+                    _ => {}
+                }
+            }
+        }
+        let prec = tp as f64 / (tp + fp).max(1) as f64;
+        let rec = tp as f64 / (tp + fneg).max(1) as f64;
+        let iou = tp as f64 / (tp + fp + fneg).max(1) as f64;
+        let court = p
+            .faces
+            .iter()
+            .any(|f| f.label == plan::label::Label::Courtyard);
+        println!(
+            "{id}\t{prec:.3}\t{rec:.3}\t{iou:.3}\t{court}\t{}\t{ms:.0}",
+            p.faces.len()
+        );
+        sum_iou += iou;
+        closed += usize::from(court);
+        n += 1;
+    }
+    println!(
+        "plans {n}, mean IoU {:.3}, closed outer wall {closed}",
+        sum_iou / n.max(1) as f64
+    );
+}
