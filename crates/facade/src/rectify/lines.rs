@@ -167,25 +167,14 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
     // Strongest lines first: count votes by re-walking is costly, so rank by support below.
     lines.truncate(params.max_hough_lines * 4);
     let mut used = vec![false; edges.pixels.len()];
+    let mut index = vec![u32::MAX; (edges.w * edges.h) as usize];
+    for (k, &(x, y, _, _)) in edges.pixels.iter().enumerate() {
+        index[(y * edges.w + x) as usize] = k as u32;
+    }
     let mut candidates: Vec<(usize, Vec<usize>)> = lines
         .iter()
         .enumerate()
-        .map(|(i, l)| {
-            let (s, c) = (l.angle_in_degrees as f64).to_radians().sin_cos();
-            let support: Vec<usize> = edges
-                .pixels
-                .iter()
-                .enumerate()
-                .filter(|(_, p)| {
-                    let (x, y, gx, gy) = **p;
-                    let d = x as f64 * c + y as f64 * s - l.r as f64;
-                    // Gradient parallel to the line normal (within ~25°).
-                    d.abs() <= 2.0 && (gx as f64 * c + gy as f64 * s).abs() > 0.9
-                })
-                .map(|(k, _)| k)
-                .collect();
-            (i, support)
-        })
+        .map(|(i, l)| (i, line_support(&edges, &index, l.r as f64, l.angle_in_degrees as f64)))
         .collect();
     candidates.sort_by(|a, b| b.1.len().cmp(&a.1.len()));
     candidates.truncate(params.max_hough_lines);
@@ -214,6 +203,44 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
                     out.push(seg.scaled(1.0 / scale));
                 }
                 start = j;
+            }
+        }
+    }
+    out
+}
+
+/// Edge pixels within 2 px of the line x cos θ + y sin θ = r whose gradient is parallel to its
+/// normal (within ~25°), found by walking along the line rather than scanning every edge pixel.
+fn line_support(edges: &Edges, index: &[u32], r: f64, deg: f64) -> Vec<usize> {
+    let (s, c) = deg.to_radians().sin_cos();
+    let (w, h) = (edges.w as i64, edges.h as i64);
+    let mut out = Vec::new();
+    let mut visit = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return;
+        }
+        let k = index[(y * w + x) as usize];
+        if k == u32::MAX {
+            return;
+        }
+        let (px, py, gx, gy) = edges.pixels[k as usize];
+        let d = px as f64 * c + py as f64 * s - r;
+        if d.abs() <= 2.0 && (gx as f64 * c + gy as f64 * s).abs() > 0.9 {
+            out.push(k as usize);
+        }
+    };
+    if s.abs() >= c.abs() {
+        for x in 0..w {
+            let y = ((r - x as f64 * c) / s).round() as i64;
+            for dy in -3..=3 {
+                visit(x, y + dy);
+            }
+        }
+    } else {
+        for y in 0..h {
+            let x = ((r - y as f64 * s) / c).round() as i64;
+            for dx in -3..=3 {
+                visit(x + dx, y);
             }
         }
     }

@@ -90,8 +90,37 @@ fn norm_frame(w: u32, h: u32) -> ((f64, f64), f64) {
     )
 }
 
+/// The two vanishing points of a photo and the segment families behind them.
+#[derive(Debug, Clone)]
+pub struct VanishingPoints {
+    pub horizontal_vp: Vp,
+    pub vertical_vp: Vp,
+    pub horizontal: Vec<Segment>,
+    pub vertical: Vec<Segment>,
+    pub others: Vec<Segment>,
+}
+
 /// Automatic rectification of a façade photo (§3.1.1).
 pub fn rectify(img: &RgbImage, params: &RectifyParams) -> Result<Rectification> {
+    let (w, h) = img.dimensions();
+    let v = find_vanishing_points(img, params)?;
+    let (hm, ow, oh) =
+        rectifying_homography(&v.horizontal_vp, &v.vertical_vp, w, h, params.max_area_factor)?;
+    Ok(Rectification {
+        h: hm,
+        width: ow,
+        height: oh,
+        horizontal_vp: v.horizontal_vp,
+        vertical_vp: v.vertical_vp,
+        horizontal: v.horizontal,
+        vertical: v.vertical,
+        others: v.others,
+    })
+}
+
+/// Edge segments → near-horizontal and near-vertical groups → one vanishing point per group by
+/// RANSAC (§3.1.1).
+pub fn find_vanishing_points(img: &RgbImage, params: &RectifyParams) -> Result<VanishingPoints> {
     let (w, h) = img.dimensions();
     check_size(w, h)?;
     let gray = image::imageops::grayscale(img);
@@ -125,11 +154,7 @@ pub fn rectify(img: &RgbImage, params: &RectifyParams) -> Result<Rectification> 
     let (vv, vin, vout) = fit(&ver, "near-vertical", params.ransac.seed.wrapping_add(1))?;
     others.extend(hout);
     others.extend(vout);
-    let (hm, ow, oh) = rectifying_homography(&vh, &vv, w, h, params.max_area_factor)?;
-    Ok(Rectification {
-        h: hm,
-        width: ow,
-        height: oh,
+    Ok(VanishingPoints {
         horizontal_vp: vh,
         vertical_vp: vv,
         horizontal: hin,
