@@ -21,6 +21,53 @@ pub enum Command {
     /// The Volumetric Shape Grammar (dissertation ch. 7).
     #[command(subcommand)]
     Vsg(VsgCommand),
+    /// Rectify a façade photo into an elevation view (dissertation §3.1.1).
+    Rectify(RectifyArgs),
+    /// Parse a rectified façade into façades, floors and windows (dissertation §3.1.2-3.1.7).
+    Facade(FacadeArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RectifyArgs {
+    /// The façade photo.
+    pub image: PathBuf,
+    /// The rectified image (PNG).
+    #[arg(short = 'o', long = "output", value_name = "RECTIFIED.png")]
+    pub output: PathBuf,
+    /// Write the homography (input pixels -> output pixels) as {"H": [[..],[..],[..]]}.
+    #[arg(long, value_name = "H.json")]
+    pub homography: Option<PathBuf>,
+    /// Use these segments instead of detected ones:
+    /// {"horizontal": [[x0,y0,x1,y1], ...], "vertical": [...]}, at least two of each.
+    #[arg(long, value_name = "LINES.json")]
+    pub lines: Option<PathBuf>,
+    /// Draw the line families and vanishing points over the photo.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Seed of the RANSAC sampling.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
+}
+
+#[derive(Debug, Args)]
+pub struct FacadeArgs {
+    /// The (rectified) façade image.
+    pub image: PathBuf,
+    /// User-drawn training boxes: {"classes": {"window": [[x0,y0,x1,y1], ...], "wall": [...], "background": [...]}}.
+    #[arg(long, value_name = "TRAINING.json")]
+    pub training: PathBuf,
+    /// The façade trees with the 18 parameters of §3.1.6.
+    #[arg(short = 'o', long = "output", value_name = "FACADE.json")]
+    pub output: PathBuf,
+    /// 8-bit label image: 0 background, 1 wall, 2 window.
+    #[arg(long, value_name = "LABELS.png")]
+    pub labels: Option<PathBuf>,
+    /// Draw the façades, floors and windows over the image.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Seed of the sampling of training and PCA pixels.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
 }
 
 #[derive(Debug, Subcommand)]
@@ -86,7 +133,71 @@ mod tests {
         argv.extend_from_slice(extra);
         Cli::try_parse_from(argv).map(|c| match c.command {
             Command::Vsg(VsgCommand::Run(a)) => a,
+            _ => unreachable!("parsed a vsg run command line"),
         })
+    }
+
+    fn rectify_args(extra: &[&str]) -> Result<RectifyArgs, clap::Error> {
+        let mut argv = vec!["castellan", "rectify", "p.jpg", "-o", "r.png"];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Rectify(a) => a,
+            _ => unreachable!("parsed a rectify command line"),
+        })
+    }
+
+    fn facade_args(extra: &[&str]) -> Result<FacadeArgs, clap::Error> {
+        let mut argv = vec!["castellan", "facade", "f.png", "--training", "t.json", "-o", "f.json"];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Facade(a) => a,
+            _ => unreachable!("parsed a facade command line"),
+        })
+    }
+
+    #[test]
+    fn rectify_output_is_required() {
+        assert!(Cli::try_parse_from(["castellan", "rectify", "p.jpg"]).is_err());
+        assert_eq!(rectify_args(&[]).unwrap().output, PathBuf::from("r.png"));
+    }
+
+    #[test]
+    fn rectify_homography_flag() {
+        assert_eq!(
+            rectify_args(&["--homography", "h.json"]).unwrap().homography,
+            Some(PathBuf::from("h.json"))
+        );
+    }
+
+    #[test]
+    fn rectify_lines_flag() {
+        assert_eq!(
+            rectify_args(&["--lines", "l.json"]).unwrap().lines,
+            Some(PathBuf::from("l.json"))
+        );
+    }
+
+    #[test]
+    fn rectify_overlay_and_seed_flags() {
+        let a = rectify_args(&["--overlay", "o.png", "--seed", "3"]).unwrap();
+        assert_eq!((a.overlay, a.seed), (Some(PathBuf::from("o.png")), 3));
+        assert_eq!(rectify_args(&[]).unwrap().seed, 7);
+    }
+
+    #[test]
+    fn facade_training_and_output_are_required() {
+        assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "-o", "f.json"]).is_err());
+        assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "--training", "t.json"]).is_err());
+        let a = facade_args(&[]).unwrap();
+        assert_eq!((a.training, a.output), (PathBuf::from("t.json"), PathBuf::from("f.json")));
+    }
+
+    #[test]
+    fn facade_labels_overlay_and_seed_flags() {
+        let a = facade_args(&["--labels", "l.png", "--overlay", "o.png", "--seed", "9"]).unwrap();
+        assert_eq!(a.labels, Some(PathBuf::from("l.png")));
+        assert_eq!(a.overlay, Some(PathBuf::from("o.png")));
+        assert_eq!(a.seed, 9);
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! library crates and writes outputs atomically; the work itself lives in the libraries.
 
 mod cli;
+mod facade_cmd;
 mod output;
+mod rectify_cmd;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -13,6 +15,8 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
+        cli::Command::Rectify(args) => rectify_cmd::run(&args),
+        cli::Command::Facade(args) => facade_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,6 +7,7 @@
 //! Everything is pure: images in, typed results out; randomness flows from explicit seeds.
 
 pub mod error;
+pub mod classify;
 pub mod rectify;
 
 pub use error::{FacadeError, Result};
