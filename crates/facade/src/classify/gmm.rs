@@ -16,11 +16,11 @@ pub struct Gaussian {
 }
 
 impl Gaussian {
-    /// From a mean and covariance; `ridge` is added to the diagonal.
-    pub fn new(mean: DVector<f64>, mut cov: DMatrix<f64>, ridge: f64) -> Result<Gaussian> {
+    /// From a mean and covariance; `ridge[i]` is added to diagonal entry i.
+    pub fn new(mean: DVector<f64>, mut cov: DMatrix<f64>, ridge: &[f64]) -> Result<Gaussian> {
         let d = mean.len();
         for i in 0..d {
-            cov[(i, i)] += ridge;
+            cov[(i, i)] += ridge[i];
         }
         let chol = cov
             .cholesky()
@@ -107,8 +107,11 @@ impl Gmm {
 
     /// EM from an initial partition of the samples (one group per component, e.g. one per user
     /// box); at most `max_iter` iterations, stopping when the mean log-likelihood gains < 1e-6.
-    pub fn fit(data: &[&[f32]], groups: &[Vec<usize>], ridge: f64, max_iter: usize) -> Result<Gmm> {
+    pub fn fit(data: &[&[f32]], groups: &[Vec<usize>], ridge: &[f64], max_iter: usize) -> Result<Gmm> {
         let m = groups.len();
+        if ridge.len() < data.first().map_or(0, |x| x.len()) {
+            return Err(FacadeError::Numerical("ridge shorter than the features".into()));
+        }
         if m == 0 || m > 32 || data.is_empty() {
             return Err(FacadeError::BadTraining(format!(
                 "a mixture needs 1 to 32 components and some samples (got {m} components, {} samples)",
@@ -153,7 +156,7 @@ impl Gmm {
         Ok(gmm)
     }
 
-    fn m_step(data: &[&[f32]], resp: &[Vec<f64>], d: usize, ridge: f64) -> Result<Gmm> {
+    fn m_step(data: &[&[f32]], resp: &[Vec<f64>], d: usize, ridge: &[f64]) -> Result<Gmm> {
         let n = data.len() as f64;
         let mut weights = Vec::new();
         let mut components = Vec::new();
@@ -178,7 +181,7 @@ mod tests {
         let g = Gaussian::new(
             DVector::from_vec(vec![1.0, 2.0]),
             DMatrix::from_row_slice(2, 2, &[4.0, 0.0, 0.0, 1.0]),
-            0.0,
+            &[0.0, 0.0],
         )
         .unwrap();
         // x = (3, 2): Mahalanobis² = 1, |Σ| = 4.
@@ -194,7 +197,7 @@ mod tests {
         let data: Vec<&[f32]> = pts.iter().map(|p| &p[..]).collect();
         // Start from a poor split: both groups mix the clusters.
         let groups = vec![(0..120).collect::<Vec<_>>(), (120..200).collect()];
-        let g = Gmm::fit(&data, &groups, 1e-6, 100).unwrap();
+        let g = Gmm::fit(&data, &groups, &[1e-6], 100).unwrap();
         let mut means: Vec<f64> = g.components.iter().map(|c| c.mean[0]).collect();
         means.sort_by(|a, b| a.total_cmp(b));
         assert!((means[0] - 0.45).abs() < 0.01 && (means[1] - 10.45).abs() < 0.01, "{means:?}");
