@@ -42,11 +42,6 @@ fn vanishing_points_match_the_york_urban_ground_truth() {
         .filter(|p| p.is_dir())
         .collect();
     scenes.sort();
-    // Debug builds are ~10x slower: measure every fourth scene there (the full figure in
-    // docs/facade.md comes from `cargo test --release`).
-    if cfg!(debug_assertions) {
-        scenes = scenes.into_iter().step_by(4).collect();
-    }
     let (mut errs_v, mut errs_h, mut failed) = (Vec::new(), Vec::new(), 0);
     for s in &scenes {
         let name = s.file_name().unwrap().to_string_lossy().to_string();
