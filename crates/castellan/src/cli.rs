@@ -147,7 +147,15 @@ mod tests {
     }
 
     fn facade_args(extra: &[&str]) -> Result<FacadeArgs, clap::Error> {
-        let mut argv = vec!["castellan", "facade", "f.png", "--training", "t.json", "-o", "f.json"];
+        let mut argv = vec![
+            "castellan",
+            "facade",
+            "f.png",
+            "--training",
+            "t.json",
+            "-o",
+            "f.json",
+        ];
         argv.extend_from_slice(extra);
         Cli::try_parse_from(argv).map(|c| match c.command {
             Command::Facade(a) => a,
@@ -164,7 +172,9 @@ mod tests {
     #[test]
     fn rectify_homography_flag() {
         assert_eq!(
-            rectify_args(&["--homography", "h.json"]).unwrap().homography,
+            rectify_args(&["--homography", "h.json"])
+                .unwrap()
+                .homography,
             Some(PathBuf::from("h.json"))
         );
     }
@@ -187,9 +197,14 @@ mod tests {
     #[test]
     fn facade_training_and_output_are_required() {
         assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "-o", "f.json"]).is_err());
-        assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "--training", "t.json"]).is_err());
+        assert!(
+            Cli::try_parse_from(["castellan", "facade", "f.png", "--training", "t.json"]).is_err()
+        );
         let a = facade_args(&[]).unwrap();
-        assert_eq!((a.training, a.output), (PathBuf::from("t.json"), PathBuf::from("f.json")));
+        assert_eq!(
+            (a.training, a.output),
+            (PathBuf::from("t.json"), PathBuf::from("f.json"))
+        );
     }
 
     #[test]

@@ -14,7 +14,8 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
     let file = args.image.display().to_string();
     let img = read_rgb(&args.image)?;
     let tfile = args.training.display().to_string();
-    let text = std::fs::read_to_string(&args.training).with_context(|| format!("cannot read {tfile}"))?;
+    let text =
+        std::fs::read_to_string(&args.training).with_context(|| format!("cannot read {tfile}"))?;
     let training: Training =
         serde_json::from_str(&text).with_context(|| format!("{tfile}: not a TRAINING.json"))?;
     training
@@ -28,7 +29,8 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         ..Default::default()
     };
     let ll = classify::classify(&img, &training, &params).map_err(|e| anyhow!("{file}: {e}"))?;
-    let model = search::parse(&img, &ll, &SearchParams::default()).map_err(|e| anyhow!("{file}: {e}"))?;
+    let model =
+        search::parse(&img, &ll, &SearchParams::default()).map_err(|e| anyhow!("{file}: {e}"))?;
     let labels = model.labels();
     let mut outputs = Outputs::default();
     outputs.add(&args.output, serde_json::to_vec_pretty(&model)?);

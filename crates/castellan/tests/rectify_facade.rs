@@ -40,7 +40,11 @@ fn rectify_with_manual_lines_writes_every_output() {
         r#"{"horizontal": [[10, 20, 110, 25], [10, 70, 110, 68]], "vertical": [[20, 10, 22, 80], [100, 10, 98, 80]]}"#,
     )
     .unwrap();
-    let (out, h, ov) = (dir.path().join("r.png"), dir.path().join("h.json"), dir.path().join("o.png"));
+    let (out, h, ov) = (
+        dir.path().join("r.png"),
+        dir.path().join("h.json"),
+        dir.path().join("o.png"),
+    );
     castellan()
         .arg("rectify")
         .arg(&img_path)
@@ -59,7 +63,13 @@ fn rectify_with_manual_lines_writes_every_output() {
     assert_eq!(rows.len(), 3);
     assert!(rows.iter().all(|r| r.as_array().unwrap().len() == 3));
     let r = image::open(&out).unwrap();
-    assert_eq!((r.width() as u64, r.height() as u64), (hj["width"].as_u64().unwrap(), hj["height"].as_u64().unwrap()));
+    assert_eq!(
+        (r.width() as u64, r.height() as u64),
+        (
+            hj["width"].as_u64().unwrap(),
+            hj["height"].as_u64().unwrap()
+        )
+    );
     assert_eq!(image::open(&ov).unwrap().width(), 120);
 }
 
@@ -67,9 +77,17 @@ fn rectify_with_manual_lines_writes_every_output() {
 fn rectify_of_a_single_colour_image_fails_cleanly() {
     let dir = tempfile::tempdir().unwrap();
     let img_path = dir.path().join("flat.png");
-    RgbImage::from_pixel(64, 64, Rgb([90, 90, 90])).save(&img_path).unwrap();
+    RgbImage::from_pixel(64, 64, Rgb([90, 90, 90]))
+        .save(&img_path)
+        .unwrap();
     let out = dir.path().join("r.png");
-    let a = castellan().arg("rectify").arg(&img_path).arg("-o").arg(&out).assert().failure();
+    let a = castellan()
+        .arg("rectify")
+        .arg(&img_path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure();
     let err = String::from_utf8_lossy(&a.get_output().stderr).to_string();
     assert!(err.contains("flat.png") && err.contains("--lines"), "{err}");
     assert!(!out.exists());
@@ -86,7 +104,11 @@ fn facade_writes_the_model_labels_and_overlay() {
         r#"{"classes": {"window": [[14, 27, 30, 43], [52, 62, 68, 78]], "wall": [[2, 50, 10, 58], [40, 17, 100, 23]], "background": [[5, 2, 115, 12]]}}"#,
     )
     .unwrap();
-    let (out, labels, ov) = (dir.path().join("f.json"), dir.path().join("l.png"), dir.path().join("o.png"));
+    let (out, labels, ov) = (
+        dir.path().join("f.json"),
+        dir.path().join("l.png"),
+        dir.path().join("o.png"),
+    );
     castellan()
         .arg("facade")
         .arg(&img_path)
@@ -134,6 +156,9 @@ fn facade_rejects_boxes_outside_the_image() {
         .assert()
         .failure();
     let err = String::from_utf8_lossy(&a.get_output().stderr).to_string();
-    assert!(err.contains("bad.json") && err.contains("no pixels inside"), "{err}");
+    assert!(
+        err.contains("bad.json") && err.contains("no pixels inside"),
+        "{err}"
+    );
     assert!(!out.exists());
 }

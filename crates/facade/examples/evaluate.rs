@@ -7,9 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use facade::classify::{classify, Class, ClassifyParams};
-use facade::eval::{class_iou, pixel_accuracy, simulate_user, IGNORE};
-use facade::search::{parse, SearchParams};
+use facade::classify::{Class, ClassifyParams, classify};
+use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user};
+use facade::search::{SearchParams, parse};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data")
@@ -34,7 +34,12 @@ fn cmp_truth(path: &Path) -> Option<Vec<u8>> {
     ];
     Some(
         img.pixels()
-            .map(|p| palette.iter().find(|(c, _)| *c == p.0).map_or(IGNORE, |(_, l)| *l))
+            .map(|p| {
+                palette
+                    .iter()
+                    .find(|(c, _)| *c == p.0)
+                    .map_or(IGNORE, |(_, l)| *l)
+            })
             .collect(),
     )
 }
@@ -52,6 +57,32 @@ fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
             })
             .collect(),
     )
+}
+
+/// Overrides for experiments: FACADE_BOX (box side, default 9), FACADE_RIDGE_REL, FACADE_PCS
+/// (principal components per channel).
+fn box_side() -> usize {
+    std::env::var("FACADE_BOX")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(9)
+}
+
+fn classify_params() -> ClassifyParams {
+    let mut p = ClassifyParams::default();
+    if let Some(r) = std::env::var("FACADE_RIDGE_REL")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        p.ridge_rel = r;
+    }
+    if let Some(k) = std::env::var("FACADE_PCS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        p.features.components = k;
+    }
+    p
 }
 
 #[derive(Default)]
@@ -73,9 +104,11 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             eprintln!("{}: label size mismatch, skipped", img_path.display());
             continue;
         }
-        let Ok(training) = simulate_user(&truth, w, h, 3, 9, 1) else { continue };
+        let Ok(training) = simulate_user(&truth, w, h, 3, box_side(), 1) else {
+            continue;
+        };
         let t = Instant::now();
-        let ll = match classify(&img, &training, &ClassifyParams::default()) {
+        let ll = match classify(&img, &training, &classify_params()) {
             Ok(ll) => ll,
             Err(e) => {
                 eprintln!("{}: {e}", img_path.display());
@@ -86,6 +119,23 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.secs += t.elapsed().as_secs_f64();
         let gmm: Vec<u8> = ll.initial_labels().iter().map(|c| *c as u8).collect();
         let pred = model.labels();
+        if let Ok(dir) = std::env::var("FACADE_DUMP") {
+            let stem = img_path.file_stem().unwrap().to_string_lossy().to_string();
+            let grey = |v: &[u8]| {
+                image::GrayImage::from_raw(
+                    w as u32,
+                    h as u32,
+                    v.iter().map(|l| l.saturating_mul(100)).collect(),
+                )
+                .unwrap()
+            };
+            grey(&truth)
+                .save(format!("{dir}/{stem}_truth.png"))
+                .unwrap();
+            grey(&gmm).save(format!("{dir}/{stem}_gmm.png")).unwrap();
+            grey(&pred).save(format!("{dir}/{stem}_model.png")).unwrap();
+            println!("{stem}: {:?}", training.classes);
+        }
         s.n += 1;
         s.acc0 += pixel_accuracy(&gmm, &truth);
         s.iou0 += class_iou(&gmm, &truth, Class::Window).unwrap_or(0.0);
@@ -105,20 +155,29 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
 }
 
 fn main() {
-    let max: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(usize::MAX);
+    let max: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(usize::MAX);
     let d = data();
     if !d.is_dir() {
         eprintln!("no ../shared/data next to the repository; nothing to evaluate");
         return;
     }
-    println!("| set | images | GMM pixel acc. | GMM window IoU | model pixel acc. | model window IoU | s / image |");
+    println!(
+        "| set | images | GMM pixel acc. | GMM window IoU | model pixel acc. | model window IoU | s / image |"
+    );
     println!("| --- | --- | --- | --- | --- | --- | --- |");
     let mut cmp: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("cmp_facade_base/base"))
         .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
         .unwrap_or_default();
     names.sort();
-    for p in names.iter().filter(|p| p.extension().is_some_and(|e| e == "jpg")).take(max) {
+    for p in names
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "jpg"))
+        .take(max)
+    {
         if let Some(t) = cmp_truth(&p.with_extension("png")) {
             cmp.push((p.clone(), t));
         }
@@ -127,7 +186,9 @@ fn main() {
     let mut art = Vec::new();
     for n in (1..=77).step_by(4).take(max) {
         let img = d.join(format!("paris_artdeco_facades/images/facade_{n}.png"));
-        if let Some(t) = artdeco_truth(&d.join(format!("paris_artdeco_facades/labels/facade_{n}.txt"))) {
+        if let Some(t) =
+            artdeco_truth(&d.join(format!("paris_artdeco_facades/labels/facade_{n}.txt")))
+        {
             art.push((img, t));
         }
     }

@@ -7,7 +7,11 @@ use thiserror::Error;
 pub enum FacadeError {
     /// The image has no pixels, or is too small for the operation.
     #[error("the image is too small ({width}x{height}); {need}")]
-    ImageTooSmall { width: u32, height: u32, need: String },
+    ImageTooSmall {
+        width: u32,
+        height: u32,
+        need: String,
+    },
     /// Rectification found no two families of converging lines (§3.1.1).
     #[error("cannot rectify: {0}")]
     NoVanishingPoints(String),

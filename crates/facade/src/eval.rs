@@ -38,28 +38,66 @@ pub fn class_iou(pred: &[u8], truth: &[u8], class: Class) -> Option<f64> {
 }
 
 /// Up to `per_class` boxes of side `side` per class, each entirely inside pixels of that class in
-/// `truth` (w × h), placed at seeded random positions (at most 2000 tries per box). Classes with
-/// no room for a box are left out.
-pub fn simulate_user(truth: &[u8], w: usize, h: usize, per_class: usize, side: usize, seed: u64) -> Result<Training> {
+/// `truth` (w × h). Like a user picking representative regions, the boxes are spread out: from up
+/// to 300 seeded random valid positions (at most 5000 tries), the first is taken, then each next
+/// one is the candidate farthest from those already chosen. Classes with no room are left out.
+pub fn simulate_user(
+    truth: &[u8],
+    w: usize,
+    h: usize,
+    per_class: usize,
+    side: usize,
+    seed: u64,
+) -> Result<Training> {
     if truth.len() != w * h || w < side || h < side || side == 0 {
-        return Err(FacadeError::BadTraining("ground truth too small for the boxes".into()));
+        return Err(FacadeError::BadTraining(
+            "ground truth too small for the boxes".into(),
+        ));
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut classes = BTreeMap::new();
     for class in Class::ALL {
-        let mask: Vec<f64> = truth.iter().map(|&l| (l == class as u8) as u8 as f64).collect();
+        let mask: Vec<f64> = truth
+            .iter()
+            .map(|&l| (l == class as u8) as u8 as f64)
+            .collect();
         let integral = Integral::new(&mask, w, h);
         let full = (side * side) as f64;
-        let mut boxes: Vec<[f64; 4]> = Vec::new();
-        for _ in 0..2000 {
-            if boxes.len() >= per_class {
+        let mut cands: Vec<(f64, f64)> = Vec::new();
+        for _ in 0..5000 {
+            if cands.len() >= 300 {
                 break;
             }
-            let (x, y) = (rng.random_range(0..=w - side), rng.random_range(0..=h - side));
+            let (x, y) = (
+                rng.random_range(0..=w - side),
+                rng.random_range(0..=h - side),
+            );
             if integral.sum(x, y, x + side, y + side) == full {
-                boxes.push([x as f64, y as f64, (x + side) as f64, (y + side) as f64]);
+                cands.push((x as f64, y as f64));
             }
         }
+        let mut chosen: Vec<(f64, f64)> = Vec::new();
+        while chosen.len() < per_class.min(cands.len()) {
+            let next = if chosen.is_empty() {
+                cands[0]
+            } else {
+                *cands
+                    .iter()
+                    .max_by(|a, b| {
+                        let d = |p: &&(f64, f64)| {
+                            chosen
+                                .iter()
+                                .map(|c| (c.0 - p.0).hypot(c.1 - p.1))
+                                .fold(f64::INFINITY, f64::min)
+                        };
+                        d(a).total_cmp(&d(b))
+                    })
+                    .unwrap_or(&cands[0])
+            };
+            chosen.push(next);
+        }
+        let s = side as f64;
+        let boxes: Vec<[f64; 4]> = chosen.iter().map(|&(x, y)| [x, y, x + s, y + s]).collect();
         if !boxes.is_empty() {
             classes.insert(class.name().to_string(), boxes);
         }

@@ -2,9 +2,9 @@
 
 mod common;
 
-use facade::classify::{classify, Class, ClassifyParams, FeatureParams};
+use facade::classify::{Class, ClassifyParams, FeatureParams, classify};
 use facade::eval::{class_iou, pixel_accuracy, simulate_user};
-use facade::search::{parse, SearchParams};
+use facade::search::{SearchParams, parse};
 
 fn truth_labels(s: &common::Synth) -> Vec<u8> {
     let (w, h) = s.img.dimensions();
@@ -43,28 +43,48 @@ fn recovers_facade_floors_and_windows() {
     let mut training = simulate_user(&truth, w, h, 3, 5, 2).unwrap();
     let win = |i: usize| {
         let r = s.windows[i];
-        [r[0] as f64 + 3.0, r[1] as f64 + 3.0, r[2] as f64 - 3.0, r[3] as f64 - 3.0]
+        [
+            r[0] as f64 + 3.0,
+            r[1] as f64 + 3.0,
+            r[2] as f64 - 3.0,
+            r[3] as f64 - 3.0,
+        ]
     };
-    training.classes.insert("window".into(), vec![win(0), win(7), win(13)]);
+    training
+        .classes
+        .insert("window".into(), vec![win(0), win(7), win(13)]);
     let f = s.facade.map(|v| v as f64);
     training.classes.insert(
         "background".into(),
-        vec![[5.0, 5.0, 235.0, f[1] - 5.0], [5.0, f[3] + 2.0, 235.0, 178.0]],
+        vec![
+            [5.0, 5.0, 235.0, f[1] - 5.0],
+            [5.0, f[3] + 2.0, 235.0, 178.0],
+        ],
     );
     let ll = classify(&s.img, &training, &params()).unwrap();
     let gmm_only: Vec<u8> = ll.initial_labels().iter().map(|c| *c as u8).collect();
     let model = parse(&s.img, &ll, &SearchParams::default()).unwrap();
     let pred = model.labels();
-    let (acc, iou) = (pixel_accuracy(&pred, &truth), class_iou(&pred, &truth, Class::Window).unwrap());
+    let (acc, iou) = (
+        pixel_accuracy(&pred, &truth),
+        class_iou(&pred, &truth, Class::Window).unwrap(),
+    );
     let (acc0, iou0) = (
         pixel_accuracy(&gmm_only, &truth),
         class_iou(&gmm_only, &truth, Class::Window).unwrap(),
     );
-    eprintln!("GMM alone: accuracy {acc0:.3}, window IoU {iou0:.3}; with the façade model: {acc:.3}, {iou:.3}");
+    eprintln!(
+        "GMM alone: accuracy {acc0:.3}, window IoU {iou0:.3}; with the façade model: {acc:.3}, {iou:.3}"
+    );
     assert_eq!(model.facades.len(), 1, "{model:?}");
     let f = &model.facades[0];
     for (a, b) in f.bbox.iter().zip(s.facade) {
-        assert!((a - b as f64).abs() <= 3.0, "bbox {:?} vs {:?}", f.bbox, s.facade);
+        assert!(
+            (a - b as f64).abs() <= 3.0,
+            "bbox {:?} vs {:?}",
+            f.bbox,
+            s.facade
+        );
     }
     assert_eq!(f.params.n_w, 5, "{:?}", f.params);
     let windows: usize = f.floors.iter().map(|fl| fl.windows.len()).sum();

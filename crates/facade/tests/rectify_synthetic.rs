@@ -4,7 +4,7 @@
 
 mod common;
 
-use facade::rectify::{self, apply, rectify, rectify_with_lines, ManualLines, RectifyParams};
+use facade::rectify::{self, ManualLines, RectifyParams, apply, rectify, rectify_with_lines};
 use nalgebra::Matrix3;
 
 /// Worst deviation (degrees) from horizontal/vertical of the façade grid lines after `g`.

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use facade::rectify::{find_vanishing_points, RectifyParams};
+use facade::rectify::{RectifyParams, find_vanishing_points};
 use nalgebra::{Matrix3, Vector3};
 
 fn data_dir() -> Option<PathBuf> {
@@ -23,7 +23,10 @@ fn read_vp(bytes: &[u8]) -> Option<Matrix3<f64>> {
 }
 
 fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
-    (a.dot(b).abs() / (a.norm() * b.norm())).min(1.0).acos().to_degrees()
+    (a.dot(b).abs() / (a.norm() * b.norm()))
+        .min(1.0)
+        .acos()
+        .to_degrees()
 }
 
 #[test]
@@ -45,9 +48,12 @@ fn vanishing_points_match_the_york_urban_ground_truth() {
     let (mut errs_v, mut errs_h, mut failed) = (Vec::new(), Vec::new(), 0);
     for s in &scenes {
         let name = s.file_name().unwrap().to_string_lossy().to_string();
-        let img = image::open(s.join(format!("{name}.jpg"))).unwrap().to_rgb8();
-        let gt = read_vp(&std::fs::read(s.join(format!("{name}GroundTruthVP_CamParams.mat"))).unwrap())
-            .expect("vp matrix");
+        let img = image::open(s.join(format!("{name}.jpg")))
+            .unwrap()
+            .to_rgb8();
+        let gt =
+            read_vp(&std::fs::read(s.join(format!("{name}GroundTruthVP_CamParams.mat"))).unwrap())
+                .expect("vp matrix");
         // Camera y points up in the ground truth; image y points down.
         let gt: Vec<Vector3<f64>> = (0..3)
             .map(|i| Vector3::new(gt[(0, i)], -gt[(1, i)], gt[(2, i)]))
@@ -81,6 +87,9 @@ fn vanishing_points_match_the_york_urban_ground_truth() {
         scenes.len()
     );
     assert!(failed * 10 <= scenes.len(), "{failed} failures");
-    assert!(wv * 2 > n && wh * 2 > n, "too few within 2°: {wv} {wh} of {n}");
+    assert!(
+        wv * 2 > n && wh * 2 > n,
+        "too few within 2°: {wv} {wh} of {n}"
+    );
     assert!(mv < 2.5 && mh < 3.0, "medians {mv} {mh}");
 }

@@ -83,10 +83,19 @@ impl Plane {
 /// and the patch mean. Orthogonal (subspace) iteration on the sample covariance, applied as
 /// Xᵀ(X V) without forming the L² × L² matrix; at most 30 rounds. Only the span of the top
 /// components matters to the mixtures downstream, so this replaces a full eigen-decomposition.
-fn pca(plane: &Plane, w: usize, h: usize, p: &FeatureParams, rng: &mut ChaCha8Rng) -> (Vec<Vec<f32>>, Vec<f32>) {
+fn pca(
+    plane: &Plane,
+    w: usize,
+    h: usize,
+    p: &FeatureParams,
+    rng: &mut ChaCha8Rng,
+) -> (Vec<Vec<f32>>, Vec<f32>) {
     let l = p.patch;
     let d = l * l;
     let k = p.components.min(d);
+    if k == 0 {
+        return (Vec::new(), vec![0.0; d]);
+    }
     let n = p.pca_samples.max(k + 1);
     let mut x = vec![0f32; n * d];
     for s in 0..n {
@@ -97,7 +106,9 @@ fn pca(plane: &Plane, w: usize, h: usize, p: &FeatureParams, rng: &mut ChaCha8Rn
     }
     let mut mean = vec![0f32; d];
     for row in x.chunks(d) {
-        mean.iter_mut().zip(row).for_each(|(m, v)| *m += v / n as f32);
+        mean.iter_mut()
+            .zip(row)
+            .for_each(|(m, v)| *m += v / n as f32);
     }
     for row in x.chunks_mut(d) {
         row.iter_mut().zip(&mean).for_each(|(v, m)| *v -= m);
@@ -153,55 +164,79 @@ pub fn compute(img: &RgbImage, p: &FeatureParams) -> Features {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let l = p.patch | 1;
     let p = FeatureParams { patch: l, ..*p };
-    let k = p.components;
+    let k = p.components.min(l * l);
     let dim = 3 + 3 * k;
+    if w == 0 || h == 0 {
+        return Features {
+            width: w,
+            height: h,
+            dim,
+            data: Vec::new(),
+        };
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
     let planes: Vec<Plane> = (0..3).map(|c| Plane::new(img, c, l / 2)).collect();
-    let bases: Vec<(Vec<Vec<f32>>, Vec<f32>)> =
-        planes.iter().map(|pl| pca(pl, w, h, &p, &mut rng)).collect();
+    let bases: Vec<(Vec<Vec<f32>>, Vec<f32>)> = planes
+        .iter()
+        .map(|pl| pca(pl, w, h, &p, &mut rng))
+        .collect();
     // Texture coefficients on the coarse grid.
     let s = p.stride.max(1);
     let (gw, gh) = ((w - 1) / s + 2, (h - 1) / s + 2);
     let mut grid = vec![0f32; gw * gh * 3 * k];
-    grid.par_chunks_mut(gw * 3 * k).enumerate().for_each(|(gy, row)| {
-        let y = (gy * s).min(h - 1);
-        for gx in 0..gw {
-            let x = (gx * s).min(w - 1);
-            for (c, (plane, (vecs, mean))) in planes.iter().zip(&bases).enumerate() {
-                for (j, v) in vecs.iter().enumerate() {
-                    let mut acc = 0f32;
-                    for dy in 0..l {
-                        let r = plane.row(x, y, dy, l);
-                        let vv = &v[dy * l..dy * l + l];
-                        let mm = &mean[dy * l..dy * l + l];
-                        acc += r.iter().zip(vv).zip(mm).map(|((a, b), m)| (a - m) * b).sum::<f32>();
+    grid.par_chunks_mut((gw * 3 * k).max(1))
+        .enumerate()
+        .for_each(|(gy, row)| {
+            let y = (gy * s).min(h - 1);
+            for gx in 0..gw {
+                let x = (gx * s).min(w - 1);
+                for (c, (plane, (vecs, mean))) in planes.iter().zip(&bases).enumerate() {
+                    for (j, v) in vecs.iter().enumerate() {
+                        let mut acc = 0f32;
+                        for dy in 0..l {
+                            let r = plane.row(x, y, dy, l);
+                            let vv = &v[dy * l..dy * l + l];
+                            let mm = &mean[dy * l..dy * l + l];
+                            acc += r
+                                .iter()
+                                .zip(vv)
+                                .zip(mm)
+                                .map(|((a, b), m)| (a - m) * b)
+                                .sum::<f32>();
+                        }
+                        row[gx * 3 * k + c * k + j] = acc;
                     }
-                    row[gx * 3 * k + c * k + j] = acc;
                 }
             }
-        }
-    });
+        });
     let mut data = vec![0f32; w * h * dim];
-    data.par_chunks_mut(w * dim).enumerate().for_each(|(y, row)| {
-        let gy = y / s;
-        let fy = (y % s) as f32 / s as f32;
-        for x in 0..w {
-            let px = img.get_pixel(x as u32, y as u32);
-            let out = &mut row[x * dim..(x + 1) * dim];
-            for c in 0..3 {
-                out[c] = px[c] as f32 / 255.0;
+    data.par_chunks_mut(w * dim)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let gy = y / s;
+            let fy = (y % s) as f32 / s as f32;
+            for x in 0..w {
+                let px = img.get_pixel(x as u32, y as u32);
+                let out = &mut row[x * dim..(x + 1) * dim];
+                for c in 0..3 {
+                    out[c] = px[c] as f32 / 255.0;
+                }
+                let gx = x / s;
+                let fx = (x % s) as f32 / s as f32;
+                let g = |xx: usize, yy: usize, i: usize| grid[(yy * gw + xx) * 3 * k + i];
+                for i in 0..3 * k {
+                    let top = g(gx, gy, i) * (1.0 - fx) + g(gx + 1, gy, i) * fx;
+                    let bot = g(gx, gy + 1, i) * (1.0 - fx) + g(gx + 1, gy + 1, i) * fx;
+                    out[3 + i] = top * (1.0 - fy) + bot * fy;
+                }
             }
-            let gx = x / s;
-            let fx = (x % s) as f32 / s as f32;
-            let g = |xx: usize, yy: usize, i: usize| grid[(yy * gw + xx) * 3 * k + i];
-            for i in 0..3 * k {
-                let top = g(gx, gy, i) * (1.0 - fx) + g(gx + 1, gy, i) * fx;
-                let bot = g(gx, gy + 1, i) * (1.0 - fx) + g(gx + 1, gy + 1, i) * fx;
-                out[3 + i] = top * (1.0 - fy) + bot * fy;
-            }
-        }
-    });
-    Features { width: w, height: h, dim, data }
+        });
+    Features {
+        width: w,
+        height: h,
+        dim,
+        data,
+    }
 }
 
 #[cfg(test)]
@@ -215,7 +250,13 @@ mod tests {
         for x in 0..30 {
             img.put_pixel(x, 12, Rgb([200, 100, 0]));
         }
-        let f = compute(&img, &FeatureParams { pca_samples: 60, ..Default::default() });
+        let f = compute(
+            &img,
+            &FeatureParams {
+                pca_samples: 60,
+                ..Default::default()
+            },
+        );
         assert_eq!(f.dim, 18);
         assert_eq!(f.data.len(), 30 * 24 * 18);
         assert!((f.at(3, 3)[0] - 10.0 / 255.0).abs() < 1e-6);

@@ -99,18 +99,25 @@ impl Gmm {
     pub fn log_pdf(&self, x: &[f32]) -> f64 {
         let mut v = [0f64; 32];
         let n = self.components.len().min(32);
-        for i in 0..n {
-            v[i] = self.weights[i].ln() + self.components[i].log_pdf(x);
+        for ((vi, w), c) in v.iter_mut().zip(&self.weights).zip(&self.components) {
+            *vi = w.ln() + c.log_pdf(x);
         }
         log_sum_exp(&v[..n])
     }
 
     /// EM from an initial partition of the samples (one group per component, e.g. one per user
     /// box); at most `max_iter` iterations, stopping when the mean log-likelihood gains < 1e-6.
-    pub fn fit(data: &[&[f32]], groups: &[Vec<usize>], ridge: &[f64], max_iter: usize) -> Result<Gmm> {
+    pub fn fit(
+        data: &[&[f32]],
+        groups: &[Vec<usize>],
+        ridge: &[f64],
+        max_iter: usize,
+    ) -> Result<Gmm> {
         let m = groups.len();
         if ridge.len() < data.first().map_or(0, |x| x.len()) {
-            return Err(FacadeError::Numerical("ridge shorter than the features".into()));
+            return Err(FacadeError::Numerical(
+                "ridge shorter than the features".into(),
+            ));
         }
         if m == 0 || m > 32 || data.is_empty() {
             return Err(FacadeError::BadTraining(format!(
@@ -124,7 +131,9 @@ impl Gmm {
         let mut resp = vec![vec![0f64; n]; m];
         for (k, g) in groups.iter().enumerate() {
             if g.is_empty() {
-                return Err(FacadeError::BadTraining("a training box has no pixels".into()));
+                return Err(FacadeError::BadTraining(
+                    "a training box has no pixels".into(),
+                ));
             }
             for &i in g {
                 resp[k][i] = 1.0;
@@ -137,8 +146,8 @@ impl Gmm {
             let mut ll = 0.0;
             let mut lp = vec![0f64; m];
             for (i, x) in data.iter().enumerate() {
-                for k in 0..m {
-                    lp[k] = gmm.weights[k].ln() + gmm.components[k].log_pdf(x);
+                for ((l, w), c) in lp.iter_mut().zip(&gmm.weights).zip(&gmm.components) {
+                    *l = w.ln() + c.log_pdf(x);
                 }
                 let z = log_sum_exp(&lp);
                 ll += z;
@@ -168,7 +177,10 @@ impl Gmm {
         }
         let s: f64 = weights.iter().sum();
         weights.iter_mut().for_each(|w| *w /= s);
-        Ok(Gmm { weights, components })
+        Ok(Gmm {
+            weights,
+            components,
+        })
     }
 }
 
@@ -192,7 +204,13 @@ mod tests {
     #[test]
     fn em_separates_two_clusters() {
         let pts: Vec<[f32; 1]> = (0..200)
-            .map(|i| [if i < 100 { (i % 10) as f32 * 0.1 } else { 10.0 + (i % 10) as f32 * 0.1 }])
+            .map(|i| {
+                [if i < 100 {
+                    (i % 10) as f32 * 0.1
+                } else {
+                    10.0 + (i % 10) as f32 * 0.1
+                }]
+            })
             .collect();
         let data: Vec<&[f32]> = pts.iter().map(|p| &p[..]).collect();
         // Start from a poor split: both groups mix the clusters.
@@ -200,7 +218,10 @@ mod tests {
         let g = Gmm::fit(&data, &groups, &[1e-6], 100).unwrap();
         let mut means: Vec<f64> = g.components.iter().map(|c| c.mean[0]).collect();
         means.sort_by(|a, b| a.total_cmp(b));
-        assert!((means[0] - 0.45).abs() < 0.01 && (means[1] - 10.45).abs() < 0.01, "{means:?}");
+        assert!(
+            (means[0] - 0.45).abs() < 0.01 && (means[1] - 10.45).abs() < 0.01,
+            "{means:?}"
+        );
         assert!((g.weights[0] - 0.5).abs() < 0.01);
     }
 }

@@ -65,7 +65,9 @@ impl Training {
             let mut v = Vec::new();
             for b in boxes {
                 if !b.iter().all(|c| c.is_finite()) {
-                    return Err(FacadeError::BadTraining(format!("{name} box {b:?} is not finite")));
+                    return Err(FacadeError::BadTraining(format!(
+                        "{name} box {b:?} is not finite"
+                    )));
                 }
                 let (x0, x1) = (b[0].min(b[2]), b[0].max(b[2]));
                 let (y0, y1) = (b[1].min(b[3]), b[1].max(b[3]));
@@ -162,7 +164,11 @@ pub struct Classifier {
 
 impl Classifier {
     /// Trains on the boxes (§3.1.3): each box seeds one component, EM refines the mixture.
-    pub fn train(features: &Features, training: &Training, p: &ClassifyParams) -> Result<Classifier> {
+    pub fn train(
+        features: &Features,
+        training: &Training,
+        p: &ClassifyParams,
+    ) -> Result<Classifier> {
         let boxes = training.boxes(features.width, features.height)?;
         let mut rng = ChaCha8Rng::seed_from_u64(p.features.seed ^ 0x5eed);
         let ridge = ridge_vector(features, p);
@@ -257,21 +263,39 @@ mod tests {
 
     fn training(pairs: &[(&str, Vec<[f64; 4]>)]) -> Training {
         Training {
-            classes: pairs.iter().map(|(k, v)| (k.to_string(), v.clone())).collect(),
+            classes: pairs
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.clone()))
+                .collect(),
         }
     }
 
     #[test]
     fn boxes_are_checked() {
         let t = training(&[("window", vec![[0.0, 0.0, 5.0, 5.0]])]);
-        assert!(t.boxes(10, 10).unwrap_err().to_string().contains("no wall boxes"));
+        assert!(
+            t.boxes(10, 10)
+                .unwrap_err()
+                .to_string()
+                .contains("no wall boxes")
+        );
         let t = training(&[
             ("window", vec![[20.0, 20.0, 30.0, 30.0]]),
             ("wall", vec![[0.0, 0.0, 5.0, 5.0]]),
         ]);
-        assert!(t.boxes(10, 10).unwrap_err().to_string().contains("no pixels inside"));
+        assert!(
+            t.boxes(10, 10)
+                .unwrap_err()
+                .to_string()
+                .contains("no pixels inside")
+        );
         let t = training(&[("door", vec![[0.0, 0.0, 5.0, 5.0]])]);
-        assert!(t.boxes(10, 10).unwrap_err().to_string().contains("unknown class"));
+        assert!(
+            t.boxes(10, 10)
+                .unwrap_err()
+                .to_string()
+                .contains("unknown class")
+        );
         let t = training(&[
             ("window", vec![[2.0, 2.0, 2.0, 8.0]]),
             ("wall", vec![[0.0, 0.0, 5.0, 5.0]]),
@@ -292,7 +316,10 @@ mod tests {
             ("wall", vec![[25.0, 2.0, 38.0, 8.0], [2.0, 22.0, 8.0, 28.0]]),
         ]);
         let p = ClassifyParams {
-            features: FeatureParams { pca_samples: 80, ..Default::default() },
+            features: FeatureParams {
+                pca_samples: 80,
+                ..Default::default()
+            },
             ..Default::default()
         };
         let ll = classify(&img, &t, &p).unwrap();

@@ -73,7 +73,12 @@ impl FacadeParams {
         if n == 1 {
             return vec![(self.y_ft, self.y_fb, self.w_h_ground, self.w_grd_ground)];
         }
-        let mut out = vec![(self.y_fb - self.h_1, self.y_fb, self.w_h_ground, self.w_grd_ground)];
+        let mut out = vec![(
+            self.y_fb - self.h_1,
+            self.y_fb,
+            self.w_h_ground,
+            self.w_grd_ground,
+        )];
         let mut bottom = self.y_fb - self.h_1;
         for _ in 0..n.saturating_sub(2) {
             out.push((bottom - self.h, bottom, self.w_h, self.w_grd));
@@ -103,7 +108,9 @@ impl FacadeParams {
                 y0,
                 y1,
                 windows: if wh > 0.0 {
-                    cols.iter().map(|&(a, b)| [a, y1 - wg - wh, b, y1 - wg]).collect()
+                    cols.iter()
+                        .map(|&(a, b)| [a, y1 - wg - wh, b, y1 - wg])
+                        .collect()
                 } else {
                     Vec::new()
                 },
@@ -125,7 +132,10 @@ impl FacadeModel {
         let (w, h) = (self.width as usize, self.height as usize);
         let mut out = vec![Class::Background as u8; w * h];
         let span = |a: f64, b: f64, n: usize| -> (usize, usize) {
-            (a.max(0.0).round().min(n as f64) as usize, b.max(0.0).round().min(n as f64) as usize)
+            (
+                a.max(0.0).round().min(n as f64) as usize,
+                b.max(0.0).round().min(n as f64) as usize,
+            )
         };
         let mut fill = |r: &[f64; 4], v: u8| {
             let (x0, x1) = span(r[0], r[2], w);
@@ -195,9 +205,15 @@ mod tests {
     fn floors_stack_from_the_ground() {
         let f = params().to_facade();
         let ys: Vec<(f64, f64)> = f.floors.iter().map(|fl| (fl.y0, fl.y1)).collect();
-        assert_eq!(ys, vec![(20.0, 40.0), (40.0, 60.0), (60.0, 80.0), (80.0, 120.0)]);
+        assert_eq!(
+            ys,
+            vec![(20.0, 40.0), (40.0, 60.0), (60.0, 80.0), (80.0, 120.0)]
+        );
         assert!(f.floors[0].windows.is_empty(), "top floor has no windows");
-        assert_eq!(f.floors[1].windows, vec![[20.0, 45.0, 40.0, 55.0], [55.0, 45.0, 75.0, 55.0]]);
+        assert_eq!(
+            f.floors[1].windows,
+            vec![[20.0, 45.0, 40.0, 55.0], [55.0, 45.0, 75.0, 55.0]]
+        );
         assert_eq!(f.floors[3].windows[0], [20.0, 95.0, 40.0, 120.0]);
     }
 

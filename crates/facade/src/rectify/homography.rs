@@ -1,7 +1,7 @@
 //! The rectifying homography of §3.1.1, H = [V_h V_v 0; 1 1 1]⁻¹, normalised so the output keeps
 //! the input's scale at its centre, and the bilinear warp.
 
-use image::{Rgb, RgbImage};
+use image::RgbImage;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
@@ -73,9 +73,12 @@ pub fn rectifying_homography(
     if vy < 0.0 {
         (vx, vy) = (-vx, -vy);
     }
-    let c0 = apply(&h0, cx, cy).ok_or_else(|| FacadeError::Numerical("centre at infinity".into()))?;
-    let ch = apply(&h0, cx + hx, cy + hy).ok_or_else(|| FacadeError::Numerical("degenerate".into()))?;
-    let cv = apply(&h0, cx + vx, cy + vy).ok_or_else(|| FacadeError::Numerical("degenerate".into()))?;
+    let c0 =
+        apply(&h0, cx, cy).ok_or_else(|| FacadeError::Numerical("centre at infinity".into()))?;
+    let ch =
+        apply(&h0, cx + hx, cy + hy).ok_or_else(|| FacadeError::Numerical("degenerate".into()))?;
+    let cv =
+        apply(&h0, cx + vx, cy + vy).ok_or_else(|| FacadeError::Numerical("degenerate".into()))?;
     let (ax, ay) = (ch.0 - c0.0, cv.1 - c0.1);
     if ax.abs() < 1e-15 || ay.abs() < 1e-15 {
         return Err(FacadeError::Numerical("degenerate rectification".into()));
@@ -83,7 +86,12 @@ pub fn rectifying_homography(
     let sc = Matrix3::new(1.0 / ax, 0.0, 0.0, 0.0, 1.0 / ay, 0.0, 0.0, 0.0, 1.0);
     let mut h1 = sc * h0;
     let bbox = |h: &Matrix3<f64>| -> Option<(f64, f64, f64, f64)> {
-        let mut b = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut b = (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        );
         for &(x, y) in &corners {
             let (u, v) = apply(h, x, y)?;
             b = (b.0.min(u), b.1.min(v), b.2.max(u), b.3.max(v));
@@ -115,6 +123,13 @@ pub fn warp(img: &RgbImage, h: &Matrix3<f64>, out_w: u32, out_h: u32) -> Result<
         .try_inverse()
         .ok_or_else(|| FacadeError::Numerical("singular homography".into()))?;
     let (w, hgt) = img.dimensions();
+    if w == 0 || hgt == 0 {
+        return Err(FacadeError::ImageTooSmall {
+            width: w,
+            height: hgt,
+            need: "the image to warp is empty".into(),
+        });
+    }
     let mut buf = vec![0u8; out_w as usize * out_h as usize * 3];
     buf.par_chunks_mut(out_w as usize * 3)
         .enumerate()
@@ -140,10 +155,6 @@ pub fn warp(img: &RgbImage, h: &Matrix3<f64>, out_w: u32, out_h: u32) -> Result<
         });
     RgbImage::from_raw(out_w, out_h, buf)
         .ok_or_else(|| FacadeError::Numerical("output buffer".into()))
-        .map(|i| {
-            let _: &Rgb<u8> = i.get_pixel(0, 0);
-            i
-        })
 }
 
 #[cfg(test)]

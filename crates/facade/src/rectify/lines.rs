@@ -4,7 +4,7 @@
 
 use image::{GrayImage, Luma};
 use imageproc::gradients::{horizontal_prewitt, vertical_prewitt};
-use imageproc::hough::{detect_lines, LineDetectionOptions};
+use imageproc::hough::{LineDetectionOptions, detect_lines};
 use serde::{Deserialize, Serialize};
 
 /// A straight edge segment in image pixels.
@@ -115,7 +115,10 @@ fn prewitt_edges(gray: &GrayImage, edge_frac: f64) -> Edges {
             if m < thr {
                 continue;
             }
-            let (ux, uy) = (gx.get_pixel(x, y)[0] as f32 / m, gy.get_pixel(x, y)[0] as f32 / m);
+            let (ux, uy) = (
+                gx.get_pixel(x, y)[0] as f32 / m,
+                gy.get_pixel(x, y)[0] as f32 / m,
+            );
             let (sx, sy) = (ux.round() as i64, uy.round() as i64);
             let (xi, yi) = (x as i64, y as i64);
             if m >= at(xi + sx, yi + sy) && m > at(xi - sx, yi - sy) {
@@ -174,9 +177,14 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
     let mut candidates: Vec<(usize, Vec<usize>)> = lines
         .iter()
         .enumerate()
-        .map(|(i, l)| (i, line_support(&edges, &index, l.r as f64, l.angle_in_degrees as f64)))
+        .map(|(i, l)| {
+            (
+                i,
+                line_support(&edges, &index, l.r as f64, l.angle_in_degrees as f64),
+            )
+        })
         .collect();
-    candidates.sort_by(|a, b| b.1.len().cmp(&a.1.len()));
+    candidates.sort_by_key(|c| std::cmp::Reverse(c.1.len()));
     candidates.truncate(params.max_hough_lines);
     let mut out = Vec::new();
     for (i, support) in candidates {
@@ -249,7 +257,10 @@ fn line_support(edges: &Edges, index: &[u32], r: f64, deg: f64) -> Vec<usize> {
 
 /// Total-least-squares fit of a run of edge pixels; `None` when too short or too sparse.
 fn fit_run(run: &[(f64, usize)], pixels: &[(u32, u32, f32, f32)], min_len: f64) -> Option<Segment> {
-    if run.len() < 2 || run[run.len() - 1].0 - run[0].0 < min_len || (run.len() as f64) < 0.6 * min_len {
+    if run.len() < 2
+        || run[run.len() - 1].0 - run[0].0 < min_len
+        || (run.len() as f64) < 0.6 * min_len
+    {
         return None;
     }
     let n = run.len() as f64;
@@ -305,7 +316,10 @@ mod tests {
         }
         let segs = detect_segments(&img, &LineParams::default());
         let tilt = 0.1f64.atan().to_degrees();
-        let horiz = segs.iter().filter(|s| (s.tilt_degrees() - tilt).abs() < 0.5).count();
+        let horiz = segs
+            .iter()
+            .filter(|s| (s.tilt_degrees() - tilt).abs() < 0.5)
+            .count();
         let vert = segs.iter().filter(|s| s.tilt_degrees() > 89.5).count();
         assert!(horiz >= 2 && vert >= 2, "{segs:?}");
     }

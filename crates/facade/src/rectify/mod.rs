@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{FacadeError, Result};
 pub use homography::{apply, rectifying_homography, warp};
-pub use lines::{detect_segments, LineParams, Segment};
-pub use vp::{angle_error, ransac_vp, weighted_lsq, RansacParams, Vp};
+pub use lines::{LineParams, Segment, detect_segments};
+pub use vp::{RansacParams, Vp, angle_error, ransac_vp, weighted_lsq};
 
 /// LINES.json: user-chosen segments, `{"horizontal": [[x0, y0, x1, y1], ...], "vertical": [...]}`
 /// in input pixels, at least two of each (§3.1.1, the manual override).
@@ -104,8 +104,13 @@ pub struct VanishingPoints {
 pub fn rectify(img: &RgbImage, params: &RectifyParams) -> Result<Rectification> {
     let (w, h) = img.dimensions();
     let v = find_vanishing_points(img, params)?;
-    let (hm, ow, oh) =
-        rectifying_homography(&v.horizontal_vp, &v.vertical_vp, w, h, params.max_area_factor)?;
+    let (hm, ow, oh) = rectifying_homography(
+        &v.horizontal_vp,
+        &v.vertical_vp,
+        w,
+        h,
+        params.max_area_factor,
+    )?;
     Ok(Rectification {
         h: hm,
         width: ow,
@@ -132,8 +137,14 @@ pub fn find_vanishing_points(img: &RgbImage, params: &RectifyParams) -> Result<V
         .into_iter()
         .partition(|s| s.tilt_degrees() > 90.0 - params.max_vertical_tilt);
     let (centre, scale) = norm_frame(w, h);
-    let fit = |group: &[Segment], name: &str, seed: u64| -> Result<(Vp, Vec<Segment>, Vec<Segment>)> {
-        let p = RansacParams { seed, ..params.ransac };
+    let fit = |group: &[Segment],
+               name: &str,
+               seed: u64|
+     -> Result<(Vp, Vec<Segment>, Vec<Segment>)> {
+        let p = RansacParams {
+            seed,
+            ..params.ransac
+        };
         let f = ransac_vp(group, centre, scale, &p).ok_or_else(|| {
             FacadeError::NoVanishingPoints(format!(
                 "found {} {name} edge segment(s) and no two that converge; give the segments with --lines",
@@ -225,7 +236,12 @@ pub fn draw_overlay(img: &RgbImage, r: &Rectification) -> RgbImage {
     }
     let (w, h) = (img.width() as f64, img.height() as f64);
     let draw = |out: &mut RgbImage, s: &Segment, col: Rgb<u8>| {
-        draw_line_segment_mut(out, (s.x0 as f32, s.y0 as f32), (s.x1 as f32, s.y1 as f32), col);
+        draw_line_segment_mut(
+            out,
+            (s.x0 as f32, s.y0 as f32),
+            (s.x1 as f32, s.y1 as f32),
+            col,
+        );
     };
     for s in &r.others {
         draw(&mut out, s, Rgb([150, 150, 150]));

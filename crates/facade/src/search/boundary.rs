@@ -88,7 +88,12 @@ pub fn merge_adjacent(rects: Vec<[usize; 4]>, tol: f64) -> Vec<[usize; 4]> {
             let close = (last[1] as f64 - r[1] as f64).abs() <= tol
                 && (last[3] as f64 - r[3] as f64).abs() <= tol;
             if touch && close {
-                *last = [last[0].min(r[0]), last[1].min(r[1]), last[2].max(r[2]), last[3].max(r[3])];
+                *last = [
+                    last[0].min(r[0]),
+                    last[1].min(r[1]),
+                    last[2].max(r[2]),
+                    last[3].max(r[3]),
+                ];
                 continue;
             }
         }
@@ -103,7 +108,10 @@ mod tests {
 
     #[test]
     fn merges_only_close_neighbours() {
-        let r = merge_adjacent(vec![[0, 10, 20, 90], [20, 12, 40, 91], [40, 40, 60, 90]], 5.0);
+        let r = merge_adjacent(
+            vec![[0, 10, 20, 90], [20, 12, 40, 91], [40, 40, 60, 90]],
+            5.0,
+        );
         assert_eq!(r, vec![[0, 10, 40, 91], [40, 40, 60, 90]]);
     }
 }

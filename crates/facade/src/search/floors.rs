@@ -57,7 +57,11 @@ impl Vertical {
             x_fr: 0.0,
             y_fb: fh as f64,
             h_1: self.h_1 as f64,
-            h: if self.n_l > 2 { (fh - self.h_1 - self.h_nl) as f64 / mid } else { 0.0 },
+            h: if self.n_l > 2 {
+                (fh - self.h_1 - self.h_nl) as f64 / mid
+            } else {
+                0.0
+            },
             h_nl: self.h_nl as f64,
             n_l: self.n_l,
             w_off: 0.0,
@@ -97,7 +101,13 @@ fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
     };
     // One floor.
     let (m, g) = floor_band(rows, 0, fh);
-    consider(Vertical { merit: m, n_l: 1, h_1: fh, ground: g, ..Default::default() });
+    consider(Vertical {
+        merit: m,
+        n_l: 1,
+        h_1: fh,
+        ground: g,
+        ..Default::default()
+    });
     for &c in cands {
         if c < MIN_SIZE || c + MIN_SIZE > fh {
             continue;
@@ -105,7 +115,15 @@ fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
         // Two floors split at c.
         let (mt, t) = floor_band(rows, 0, c);
         let (mg, g) = floor_band(rows, c, fh);
-        consider(Vertical { merit: mt + mg, n_l: 2, h_1: fh - c, h_nl: c, ground: g, top: t, ..Default::default() });
+        consider(Vertical {
+            merit: mt + mg,
+            n_l: 2,
+            h_1: fh - c,
+            h_nl: c,
+            ground: g,
+            top: t,
+            ..Default::default()
+        });
     }
     // Three or more floors: top floor [0, a), ground [b, fh), equal middle floors in [a, b).
     for (i, &a) in cands.iter().enumerate() {
@@ -180,7 +198,13 @@ fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
             }
             let one = pre[b] - pre[a];
             if one > best.merit {
-                best = Horizontal { merit: one, off: a, w, gap: 0, n: 1 };
+                best = Horizontal {
+                    merit: one,
+                    off: a,
+                    w,
+                    gap: 0,
+                    n: 1,
+                };
             }
             for &c in &cands[ib + 1..] {
                 let gap = c - b;
@@ -195,7 +219,13 @@ fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
                     }
                     m += pre[x0 + w] - pre[x0];
                     if m > best.merit {
-                        best = Horizontal { merit: m, off: a, w, gap, n: k + 1 };
+                        best = Horizontal {
+                            merit: m,
+                            off: a,
+                            w,
+                            gap,
+                            n: k + 1,
+                        };
                     }
                 }
             }
@@ -206,19 +236,32 @@ fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
 
 /// Fits the floors and windows of the façade `r` = [x0, y0, x1, y1] given the integral of the
 /// window-minus-wall log-likelihood (§3.1.7).
-pub fn fit_floors(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchParams) -> FacadeParams {
+pub fn fit_floors(
+    r: [usize; 4],
+    d: &Integral,
+    grads: &Gradients,
+    p: &SearchParams,
+) -> FacadeParams {
     let [x0, y0, x1, y1] = r;
     let (fw, fh) = (x1 - x0, y1 - y0);
     let xc: Vec<usize> = grads.x_peaks(r, p).into_iter().map(|x| x - x0).collect();
     let yc: Vec<usize> = grads.y_peaks(r, p).into_iter().map(|y| y - y0).collect();
     let col_profile = |rows: &[(usize, usize)]| -> Vec<f64> {
         (0..fw)
-            .map(|x| rows.iter().map(|&(a, b)| d.sum(x0 + x, y0 + a, x0 + x + 1, y0 + b)).sum())
+            .map(|x| {
+                rows.iter()
+                    .map(|&(a, b)| d.sum(x0 + x, y0 + a, x0 + x + 1, y0 + b))
+                    .sum()
+            })
             .collect()
     };
     let row_profile = |cols: &[(usize, usize)]| -> Vec<f64> {
         (0..fh)
-            .map(|y| cols.iter().map(|&(a, b)| d.sum(x0 + a, y0 + y, x0 + b, y0 + y + 1)).sum())
+            .map(|y| {
+                cols.iter()
+                    .map(|&(a, b)| d.sum(x0 + a, y0 + y, x0 + b, y0 + y + 1))
+                    .sum()
+            })
             .collect()
     };
     // Start: rows whose window-minus-wall sum is above the median row's.
@@ -226,8 +269,10 @@ pub fn fit_floors(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPara
     let mut sorted = all.clone();
     sorted.sort_by(|a, b| a.total_cmp(b));
     let median = sorted.get(fh / 2).copied().unwrap_or(0.0);
-    let mut rows: Vec<(usize, usize)> =
-        (0..fh).filter(|&y| all[y] > median).map(|y| (y, y + 1)).collect();
+    let mut rows: Vec<(usize, usize)> = (0..fh)
+        .filter(|&y| all[y] > median)
+        .map(|y| (y, y + 1))
+        .collect();
     let mut hor = Horizontal::default();
     let mut ver = Vertical::default();
     for _ in 0..p.rounds.max(1) {
@@ -239,7 +284,11 @@ pub fn fit_floors(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPara
             })
             .collect();
         let new_ver = if cols.is_empty() {
-            Vertical { n_l: 1, h_1: fh, ..Default::default() }
+            Vertical {
+                n_l: 1,
+                h_1: fh,
+                ..Default::default()
+            }
         } else {
             search_vertical(&row_profile(&cols), &yc)
         };
@@ -277,7 +326,13 @@ mod tests {
     fn horizontal_search_recovers_a_window_pattern() {
         // Windows at 5..10, 15..20, 25..30 in a 40-wide façade.
         let cols: Vec<f64> = (0..40)
-            .map(|x| if (5..30).contains(&x) && (x - 5) % 10 < 5 { 1.0 } else { -1.0 })
+            .map(|x| {
+                if (5..30).contains(&x) && (x - 5) % 10 < 5 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            })
             .collect();
         let cands = vec![0, 5, 10, 15, 20, 25, 30, 40];
         let h = search_horizontal(&cols, &cands);
@@ -287,10 +342,24 @@ mod tests {
     #[test]
     fn vertical_search_recovers_equal_middle_floors() {
         // 5 floors of 20 rows; windows rows 5..15 of each floor (bottom offset 5).
-        let rows: Vec<f64> = (0..100).map(|y| if (5..15).contains(&(y % 20)) { 1.0 } else { -1.0 }).collect();
+        let rows: Vec<f64> = (0..100)
+            .map(|y| {
+                if (5..15).contains(&(y % 20)) {
+                    1.0
+                } else {
+                    -1.0
+                }
+            })
+            .collect();
         let cands: Vec<usize> = (0..=100).step_by(5).collect();
         let v = search_vertical(&rows, &cands);
         assert_eq!(v.merit, 50.0);
-        assert_eq!(v.rows(100), vec![(5, 15), (25, 35), (45, 55), (65, 75), (85, 95)].into_iter().rev().collect::<Vec<_>>());
+        assert_eq!(
+            v.rows(100),
+            vec![(5, 15), (25, 35), (45, 55), (65, 75), (85, 95)]
+                .into_iter()
+                .rev()
+                .collect::<Vec<_>>()
+        );
     }
 }

@@ -9,7 +9,7 @@ use image::RgbImage;
 
 use crate::classify::{Class, LogLikelihoods};
 use crate::error::{FacadeError, Result};
-use crate::model::{merit, FacadeModel};
+use crate::model::{FacadeModel, merit};
 
 /// Search settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,13 +101,17 @@ impl Gradients {
     /// Candidate vertical split lines (x positions) inside the rectangle: peaks of the column
     /// sums of |∂I/∂x|, plus the rectangle's own edges.
     pub fn x_peaks(&self, r: [usize; 4], p: &SearchParams) -> Vec<usize> {
-        let prof: Vec<f64> = (r[0]..r[2]).map(|x| self.gx.sum(x, r[1], x + 1, r[3])).collect();
+        let prof: Vec<f64> = (r[0]..r[2])
+            .map(|x| self.gx.sum(x, r[1], x + 1, r[3]))
+            .collect();
         with_ends(peaks(&prof, p.max_peaks, p.peak_separation), r[0], r[2])
     }
 
     /// Candidate horizontal split lines (y positions): peaks of the row sums of |∂I/∂y|.
     pub fn y_peaks(&self, r: [usize; 4], p: &SearchParams) -> Vec<usize> {
-        let prof: Vec<f64> = (r[1]..r[3]).map(|y| self.gy.sum(r[0], y, r[2], y + 1)).collect();
+        let prof: Vec<f64> = (r[1]..r[3])
+            .map(|y| self.gy.sum(r[0], y, r[2], y + 1))
+            .collect();
         with_ends(peaks(&prof, p.max_peaks, p.peak_separation), r[1], r[3])
     }
 }
@@ -127,8 +131,16 @@ pub fn peaks(prof: &[f64], max: usize, sep: usize) -> Vec<usize> {
     let n = prof.len();
     let mut cand: Vec<usize> = (0..n)
         .filter(|&i| {
-            let l = if i > 0 { prof[i - 1] } else { f64::NEG_INFINITY };
-            let r = if i + 1 < n { prof[i + 1] } else { f64::NEG_INFINITY };
+            let l = if i > 0 {
+                prof[i - 1]
+            } else {
+                f64::NEG_INFINITY
+            };
+            let r = if i + 1 < n {
+                prof[i + 1]
+            } else {
+                f64::NEG_INFINITY
+            };
             prof[i] > 0.0 && prof[i] >= l && prof[i] > r
         })
         .collect();
@@ -156,7 +168,9 @@ pub fn parse(img: &RgbImage, ll: &LogLikelihoods, p: &SearchParams) -> Result<Fa
         )));
     }
     let (Some(win), Some(wall)) = (ll.get(Class::Window), ll.get(Class::Wall)) else {
-        return Err(FacadeError::BadTraining("window and wall classes are required".into()));
+        return Err(FacadeError::BadTraining(
+            "window and wall classes are required".into(),
+        ));
     };
     let grads = Gradients::new(img);
     let rects = match ll.get(Class::Background) {

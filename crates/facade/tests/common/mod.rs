@@ -48,5 +48,9 @@ pub fn facade(w: u32, h: u32, floors: u32, cols: u32, seed: u64) -> Synth {
         let n: f64 = rng.random_range(-8.0..8.0);
         *p = Rgb(base.map(|b| (b + n).clamp(0.0, 255.0) as u8));
     }
-    Synth { img, facade, windows }
+    Synth {
+        img,
+        facade,
+        windows,
+    }
 }
