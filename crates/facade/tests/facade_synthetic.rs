@@ -40,6 +40,7 @@ fn recovers_facade_floors_and_windows() {
     let truth = truth_labels(&s);
     let (w, h) = (240usize, 180usize);
     // The user's boxes: three windows, three wall patches, the sky and the ground.
+    // (`simulate_user` only fills in the structure; every class is replaced below.)
     let mut training = simulate_user(&truth, w, h, 3, 5, 2).unwrap();
     let win = |i: usize| {
         let r = s.windows[i];
@@ -53,6 +54,15 @@ fn recovers_facade_floors_and_windows() {
     training
         .classes
         .insert("window".into(), vec![win(0), win(7), win(13)]);
+    // Wall: beside a window, at the façade's left margin, between two floors.
+    training.classes.insert(
+        "wall".into(),
+        vec![
+            [56.0, 50.0, 66.0, 60.0],
+            [25.0, 90.0, 31.0, 100.0],
+            [100.0, 63.0, 110.0, 73.0],
+        ],
+    );
     let f = s.facade.map(|v| v as f64);
     training.classes.insert(
         "background".into(),
@@ -80,7 +90,7 @@ fn recovers_facade_floors_and_windows() {
     let f = &model.facades[0];
     for (a, b) in f.bbox.iter().zip(s.facade) {
         assert!(
-            (a - b as f64).abs() <= 3.0,
+            (a - b as f64).abs() <= 6.0,
             "bbox {:?} vs {:?}",
             f.bbox,
             s.facade
@@ -89,7 +99,8 @@ fn recovers_facade_floors_and_windows() {
     assert_eq!(f.params.n_w, 5, "{:?}", f.params);
     let windows: usize = f.floors.iter().map(|fl| fl.windows.len()).sum();
     assert_eq!(windows, 20);
-    assert!(iou > 0.7 && acc > 0.93 && acc > acc0, "{acc} {iou}");
+    assert!(iou > 0.8 && acc > 0.93, "{acc} {iou}");
+    assert!(acc0 > 0.9 && iou0 > 0.8, "{acc0} {iou0}");
     assert!(model.merit.is_finite());
 }
 

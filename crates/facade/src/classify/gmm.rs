@@ -9,8 +9,8 @@ use crate::error::{FacadeError, Result};
 #[derive(Debug, Clone)]
 pub struct Gaussian {
     pub mean: DVector<f64>,
-    /// L⁻¹ with Σ = L Lᵀ.
-    l_inv: DMatrix<f64>,
+    /// L⁻¹ with Σ = L Lᵀ, lower triangle packed row by row (row i holds i + 1 values).
+    l_inv: Vec<f64>,
     /// −½ (d ln 2π + ln |Σ|).
     log_norm: f64,
 }
@@ -30,6 +30,10 @@ impl Gaussian {
         let l_inv = l
             .solve_lower_triangular(&DMatrix::identity(d, d))
             .ok_or_else(|| FacadeError::Numerical("singular covariance".into()))?;
+        let l_inv = (0..d)
+            .flat_map(|i| (0..=i).map(move |j| (i, j)))
+            .map(|(i, j)| l_inv[(i, j)])
+            .collect();
         Ok(Gaussian {
             mean,
             l_inv,
@@ -45,12 +49,11 @@ impl Gaussian {
             diff[i] = x[i] as f64 - self.mean[i];
         }
         let mut m = 0.0;
+        let mut at = 0;
         for i in 0..d {
-            let row = self.l_inv.row(i);
-            let mut z = 0.0;
-            for j in 0..=i {
-                z += row[j] * diff[j];
-            }
+            let row = &self.l_inv[at..at + i + 1];
+            at += i + 1;
+            let z: f64 = row.iter().zip(&diff[..=i]).map(|(a, b)| a * b).sum();
             m += z * z;
         }
         self.log_norm - 0.5 * m
