@@ -5,11 +5,15 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::error::{FacadeError, Result};
 
+/// Largest feature dimension handled (the text's features have 18).
+pub const MAX_DIM: usize = 64;
+
 /// One multivariate normal, stored for fast log densities: the inverse Cholesky factor.
 #[derive(Debug, Clone)]
 pub struct Gaussian {
     pub mean: DVector<f64>,
-    /// L⁻¹ with Σ = L Lᵀ, lower triangle packed row by row (row i holds i + 1 values).
+    /// L⁻¹ with Σ = L Lᵀ, lower triangle packed column by column (column j holds rows j..d), so
+    /// z = L⁻¹ (x − μ) is a run of contiguous, vectorisable updates.
     l_inv: Vec<f64>,
     /// −½ (d ln 2π + ln |Σ|).
     log_norm: f64,
@@ -19,6 +23,11 @@ impl Gaussian {
     /// From a mean and covariance; `ridge[i]` is added to diagonal entry i.
     pub fn new(mean: DVector<f64>, mut cov: DMatrix<f64>, ridge: &[f64]) -> Result<Gaussian> {
         let d = mean.len();
+        if d > MAX_DIM || ridge.len() < d || cov.shape() != (d, d) {
+            return Err(FacadeError::Numerical(format!(
+                "Gaussians of 1 to {MAX_DIM} dimensions with a matching covariance and ridge (got {d})"
+            )));
+        }
         for i in 0..d {
             cov[(i, i)] += ridge[i];
         }
@@ -31,7 +40,7 @@ impl Gaussian {
             .solve_lower_triangular(&DMatrix::identity(d, d))
             .ok_or_else(|| FacadeError::Numerical("singular covariance".into()))?;
         let l_inv = (0..d)
-            .flat_map(|i| (0..=i).map(move |j| (i, j)))
+            .flat_map(|j| (j..d).map(move |i| (i, j)))
             .map(|(i, j)| l_inv[(i, j)])
             .collect();
         Ok(Gaussian {
@@ -44,18 +53,17 @@ impl Gaussian {
     /// ln N(x | μ, Σ).
     pub fn log_pdf(&self, x: &[f32]) -> f64 {
         let d = self.mean.len();
-        let mut diff = [0f64; 64];
-        for i in 0..d {
-            diff[i] = x[i] as f64 - self.mean[i];
-        }
-        let mut m = 0.0;
+        let mut z = [0f64; MAX_DIM];
         let mut at = 0;
-        for i in 0..d {
-            let row = &self.l_inv[at..at + i + 1];
-            at += i + 1;
-            let z: f64 = row.iter().zip(&diff[..=i]).map(|(a, b)| a * b).sum();
-            m += z * z;
+        for j in 0..d {
+            let diff = x[j] as f64 - self.mean[j];
+            let col = &self.l_inv[at..at + d - j];
+            at += d - j;
+            for (zi, l) in z[j..d].iter_mut().zip(col) {
+                *zi += l * diff;
+            }
         }
+        let m: f64 = z[..d].iter().map(|v| v * v).sum();
         self.log_norm - 0.5 * m
     }
 }
@@ -64,6 +72,8 @@ impl Gaussian {
 #[derive(Debug, Clone)]
 pub struct Gmm {
     pub weights: Vec<f64>,
+    /// ln w_i, kept beside the weights for per-pixel evaluation.
+    log_weights: Vec<f64>,
     pub components: Vec<Gaussian>,
 }
 
@@ -102,8 +112,8 @@ impl Gmm {
     pub fn log_pdf(&self, x: &[f32]) -> f64 {
         let mut v = [0f64; 32];
         let n = self.components.len().min(32);
-        for ((vi, w), c) in v.iter_mut().zip(&self.weights).zip(&self.components) {
-            *vi = w.ln() + c.log_pdf(x);
+        for ((vi, lw), c) in v.iter_mut().zip(&self.log_weights).zip(&self.components) {
+            *vi = lw + c.log_pdf(x);
         }
         log_sum_exp(&v[..n])
     }
@@ -180,8 +190,10 @@ impl Gmm {
         }
         let s: f64 = weights.iter().sum();
         weights.iter_mut().for_each(|w| *w /= s);
+        let log_weights = weights.iter().map(|w| w.ln()).collect();
         Ok(Gmm {
             weights,
+            log_weights,
             components,
         })
     }
