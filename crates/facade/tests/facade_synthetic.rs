@@ -115,3 +115,22 @@ fn without_background_boxes_the_image_is_one_facade() {
     assert_eq!(model.facades.len(), 1);
     assert_eq!(model.facades[0].bbox, [0.0, 0.0, 160.0, 120.0]);
 }
+
+#[test]
+fn odd_shapes_give_results_or_errors_never_panics() {
+    use facade::classify::Training;
+    for (w, h) in [(2u32, 2u32), (3, 40), (40, 3), (25, 25)] {
+        let mut img = image::RgbImage::from_pixel(w, h, image::Rgb([200, 150, 100]));
+        img.put_pixel(0, 0, image::Rgb([20, 30, 40]));
+        let t: Training = serde_json::from_str(&format!(
+            r#"{{"classes": {{"window": [[0, 0, 1, 1]], "wall": [[0, 0, {w}, {h}]], "background": [[{}, {}, {w}, {h}]]}}}}"#,
+            w - 1,
+            h - 1
+        ))
+        .unwrap();
+        if let Ok(ll) = classify(&img, &t, &params()) {
+            let m = parse(&img, &ll, &SearchParams::default()).unwrap();
+            assert_eq!(m.labels().len(), (w * h) as usize);
+        }
+    }
+}

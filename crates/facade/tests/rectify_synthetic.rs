@@ -97,3 +97,18 @@ fn single_colour_image_is_a_clear_error() {
     let e = rectify(&img, &RectifyParams::default()).unwrap_err();
     assert!(e.to_string().contains("no two that converge"), "{e}");
 }
+
+#[test]
+fn odd_images_give_results_or_errors_never_panics() {
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+    for (w, h) in [(1u32, 1u32), (16, 16), (400, 17), (17, 300), (120, 90)] {
+        let img = image::RgbImage::from_fn(w, h, |_, _| {
+            image::Rgb([rng.random(), rng.random(), rng.random()])
+        });
+        if let Ok(r) = rectify(&img, &RectifyParams::default()) {
+            let out = r.warp(&img).unwrap();
+            assert!(out.width() > 0 && out.height() > 0);
+        }
+    }
+}
