@@ -50,7 +50,7 @@ fn automatic_rectification_recovers_synthetic_warps() {
         let [x0, y0, x1, y1] = s.facade;
         let err = grid_error(&g, [x0 + 8, y0 + 8, x1 - 8, y1 - 8]);
         eprintln!("case {i}: worst grid-line deviation {err:.3}°");
-        assert!(err < 0.5, "case {i}: {err}°");
+        assert!(err < 0.3, "case {i}: {err}°");
         // Sensible size: within a factor 2 of the input in each direction.
         assert!(r.width > 160 && r.width < 640 && r.height > 120 && r.height < 480);
     }

@@ -17,6 +17,8 @@ pub struct RansacParams {
     /// Segments per hypothesis.
     pub sample_size: usize,
     /// A segment whose angle φ_n to its midpoint–VP line is below this is an inlier (degrees).
+    /// 2.5° measured best on York Urban (vertical median 0.71°, horizontal 1.00°; 1.0°: 1.06°,
+    /// 0.90°; 1.5°: 1.04°, 0.85°; 3.5°: 0.79°, 1.40°).
     pub inlier_degrees: f64,
     pub seed: u64,
 }
@@ -26,7 +28,7 @@ impl Default for RansacParams {
         RansacParams {
             iterations: 500,
             sample_size: 2,
-            inlier_degrees: 1.5,
+            inlier_degrees: 2.5,
             seed: 7,
         }
     }
