@@ -29,6 +29,10 @@ pub enum Command {
     CornersEval(CornersEvalArgs),
     /// Parse a castle plan drawing into labelled walls, rooms and towers (dissertation ch. 5).
     Plan(crate::plan_cmd::PlanArgs),
+    /// Rectify a façade photo into an elevation view (dissertation §3.1.1).
+    Rectify(crate::rectify_cmd::RectifyArgs),
+    /// Parse a rectified façade into façades, floors and windows (dissertation §3.1.2-3.1.7).
+    Facade(crate::facade_cmd::FacadeArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -184,7 +188,7 @@ fn parse_window(s: &str) -> Result<usize, String> {
     let w: usize = s
         .parse()
         .map_err(|_| format!("'{s}' is not a whole number"))?;
-    if w < 3 || w % 2 == 0 || w > 101 {
+    if w < 3 || w.is_multiple_of(2) || w > 101 {
         return Err(format!("the window must be odd, from 3 to 101 (found {w})"));
     }
     Ok(w)

@@ -3,8 +3,10 @@
 
 mod cli;
 mod corners_cmd;
+mod facade_cmd;
 mod output;
 mod plan_cmd;
+mod rectify_cmd;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -18,6 +20,8 @@ fn main() -> ExitCode {
         cli::Command::Corners(args) => corners_cmd::run(&args),
         cli::Command::CornersEval(args) => corners_cmd::eval(&args),
         cli::Command::Plan(args) => plan_cmd::run(&args),
+        cli::Command::Rectify(args) => rectify_cmd::run(&args),
+        cli::Command::Facade(args) => facade_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -74,7 +74,7 @@ impl Params {
     /// Checks ranges; the message names the parameter.
     pub fn validate(&self) -> Result<(), crate::Error> {
         let bad = |what: &str| Err(crate::Error::BadParam(what.to_string()));
-        if self.window < 3 || self.window % 2 == 0 || self.window > 101 {
+        if self.window < 3 || self.window.is_multiple_of(2) || self.window > 101 {
             return bad("window must be odd, from 3 to 101");
         }
         if !(self.sigma > 0.0 && self.sigma.is_finite()) {

@@ -1,0 +1,138 @@
+//! `castellan facade`: a rectified façade image and TRAINING.json → FACADE.json (façades, floors,
+//! windows, the 18 parameters of §3.1.6), LABELS.png and an overlay.
+
+use anyhow::{Context, Result, anyhow};
+use clap::Args;
+use facade::classify::{self, ClassifyParams, FeatureParams, Training};
+use facade::search::{self, SearchParams};
+use image::{GrayImage, Rgb};
+use std::path::PathBuf;
+
+use crate::output::Outputs;
+use crate::rectify_cmd::{png_bytes, read_rgb};
+
+pub fn run(args: &FacadeArgs) -> Result<()> {
+    let file = args.image.display().to_string();
+    let img = read_rgb(&args.image)?;
+    let tfile = args.training.display().to_string();
+    let text =
+        std::fs::read_to_string(&args.training).with_context(|| format!("cannot read {tfile}"))?;
+    let training: Training =
+        serde_json::from_str(&text).with_context(|| format!("{tfile}: not a TRAINING.json"))?;
+    training
+        .boxes(img.width() as usize, img.height() as usize)
+        .map_err(|e| anyhow!("{tfile}: {e}"))?;
+    let params = ClassifyParams {
+        features: FeatureParams {
+            seed: args.seed,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let ll = classify::classify(&img, &training, &params).map_err(|e| anyhow!("{file}: {e}"))?;
+    let model =
+        search::parse(&img, &ll, &SearchParams::default()).map_err(|e| anyhow!("{file}: {e}"))?;
+    let labels = model.labels();
+    let mut outputs = Outputs::default();
+    outputs.add(&args.output, serde_json::to_vec_pretty(&model)?);
+    if let Some(lp) = &args.labels {
+        let g = GrayImage::from_raw(model.width, model.height, labels.clone())
+            .ok_or_else(|| anyhow!("label image size"))?;
+        outputs.add(lp, png_bytes(&g)?);
+    }
+    if let Some(op) = &args.overlay {
+        let mut o = img.clone();
+        let colours = [Rgb([255u8, 40, 40]), Rgb([255, 0, 255]), Rgb([0, 220, 0])];
+        for (p, l) in o.pixels_mut().zip(&labels) {
+            let c = colours[*l as usize];
+            for k in 0..3 {
+                p[k] = ((p[k] as u16 + c[k] as u16) / 2) as u8;
+            }
+        }
+        outputs.add(op, png_bytes(&o)?);
+    }
+    outputs.commit()?;
+    let windows: usize = model
+        .facades
+        .iter()
+        .flat_map(|f| &f.floors)
+        .map(|fl| fl.windows.len())
+        .sum();
+    eprintln!(
+        "{file}: {} façade(s), {} floor(s), {windows} window(s); written to {}",
+        model.facades.len(),
+        model.facades.iter().map(|f| f.floors.len()).sum::<usize>(),
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// `castellan facade` flags.
+#[derive(Debug, Args)]
+pub struct FacadeArgs {
+    /// The (rectified) façade image.
+    pub image: PathBuf,
+    /// User-drawn training boxes: {"classes": {"window": [[x0,y0,x1,y1], ...], "wall": [...], "background": [...]}}.
+    #[arg(long, value_name = "TRAINING.json")]
+    pub training: PathBuf,
+    /// The façade trees with the 18 parameters of §3.1.6.
+    #[arg(short = 'o', long = "output", value_name = "FACADE.json")]
+    pub output: PathBuf,
+    /// 8-bit label image: 0 background, 1 wall, 2 window.
+    #[arg(long, value_name = "LABELS.png")]
+    pub labels: Option<PathBuf>,
+    /// Draw the façades, floors and windows over the image.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Seed of the sampling of training and PCA pixels.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use std::path::PathBuf;
+
+    use clap::Parser;
+
+    use super::FacadeArgs;
+    use crate::cli::{Cli, Command};
+
+    fn facade_args(extra: &[&str]) -> Result<FacadeArgs, clap::Error> {
+        let mut argv = vec![
+            "castellan",
+            "facade",
+            "f.png",
+            "--training",
+            "t.json",
+            "-o",
+            "f.json",
+        ];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Facade(a) => a,
+            _ => unreachable!("parsed a facade command line"),
+        })
+    }
+
+    #[test]
+    fn facade_training_and_output_are_required() {
+        assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "-o", "f.json"]).is_err());
+        assert!(
+            Cli::try_parse_from(["castellan", "facade", "f.png", "--training", "t.json"]).is_err()
+        );
+        let a = facade_args(&[]).unwrap();
+        assert_eq!(
+            (a.training, a.output),
+            (PathBuf::from("t.json"), PathBuf::from("f.json"))
+        );
+    }
+
+    #[test]
+    fn facade_labels_overlay_and_seed_flags() {
+        let a = facade_args(&["--labels", "l.png", "--overlay", "o.png", "--seed", "9"]).unwrap();
+        assert_eq!(a.labels, Some(PathBuf::from("l.png")));
+        assert_eq!(a.overlay, Some(PathBuf::from("o.png")));
+        assert_eq!(a.seed, 9);
+    }
+}

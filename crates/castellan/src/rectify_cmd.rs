@@ -1,0 +1,150 @@
+//! `castellan rectify`: a façade photo → its elevation view (§3.1.1), with H.json and an overlay
+//! of the line families and vanishing points.
+
+use std::path::Path;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, anyhow};
+use clap::Args;
+use facade::rectify::{self, ManualLines, RectifyParams};
+
+use crate::output::Outputs;
+
+/// Reads an image as RGB, naming the file on failure.
+pub fn read_rgb(path: &Path) -> Result<image::RgbImage> {
+    Ok(image::open(path)
+        .with_context(|| format!("cannot read image {}", path.display()))?
+        .to_rgb8())
+}
+
+/// PNG bytes of an 8-bit image.
+pub fn png_bytes<P, C>(img: &image::ImageBuffer<P, C>) -> Result<Vec<u8>>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
+{
+    let mut buf = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut buf, image::ImageFormat::Png)?;
+    Ok(buf.into_inner())
+}
+
+pub fn run(args: &RectifyArgs) -> Result<()> {
+    let file = args.image.display().to_string();
+    let img = read_rgb(&args.image)?;
+    let params = RectifyParams {
+        ransac: rectify::RansacParams {
+            seed: args.seed,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let r = match &args.lines {
+        Some(lines_path) => {
+            let text = std::fs::read_to_string(lines_path)
+                .with_context(|| format!("cannot read {}", lines_path.display()))?;
+            let lines: ManualLines = serde_json::from_str(&text)
+                .with_context(|| format!("{}: not a LINES.json", lines_path.display()))?;
+            rectify::rectify_with_lines(img.width(), img.height(), &lines, &params)
+                .map_err(|e| anyhow!("{}: {e}", lines_path.display()))?
+        }
+        None => rectify::rectify(&img, &params).map_err(|e| anyhow!("{file}: {e}"))?,
+    };
+    let warped = r.warp(&img).map_err(|e| anyhow!("{file}: {e}"))?;
+    let mut outputs = Outputs::default();
+    outputs.add(&args.output, png_bytes(&warped)?);
+    if let Some(hp) = &args.homography {
+        let rows: Vec<[f64; 3]> = (0..3)
+            .map(|i| [r.h[(i, 0)], r.h[(i, 1)], r.h[(i, 2)]])
+            .collect();
+        let json = serde_json::json!({ "H": rows, "width": r.width, "height": r.height,
+            "horizontal_vp": r.horizontal_vp, "vertical_vp": r.vertical_vp });
+        outputs.add(hp, serde_json::to_vec_pretty(&json)?);
+    }
+    if let Some(op) = &args.overlay {
+        outputs.add(op, png_bytes(&rectify::draw_overlay(&img, &r))?);
+    }
+    outputs.commit()?;
+    eprintln!(
+        "{file}: {} horizontal and {} vertical segments; rectified to {}x{}, written to {}",
+        r.horizontal.len(),
+        r.vertical.len(),
+        r.width,
+        r.height,
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// `castellan rectify` flags.
+#[derive(Debug, Args)]
+pub struct RectifyArgs {
+    /// The façade photo.
+    pub image: PathBuf,
+    /// The rectified image (PNG).
+    #[arg(short = 'o', long = "output", value_name = "RECTIFIED.png")]
+    pub output: PathBuf,
+    /// Write the homography (input pixels -> output pixels) as {"H": [[..],[..],[..]]}.
+    #[arg(long, value_name = "H.json")]
+    pub homography: Option<PathBuf>,
+    /// Use these segments instead of detected ones:
+    /// {"horizontal": [[x0,y0,x1,y1], ...], "vertical": [...]}, at least two of each.
+    #[arg(long, value_name = "LINES.json")]
+    pub lines: Option<PathBuf>,
+    /// Draw the line families and vanishing points over the photo.
+    #[arg(long, value_name = "OVERLAY.png")]
+    pub overlay: Option<PathBuf>,
+    /// Seed of the RANSAC sampling.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use std::path::PathBuf;
+
+    use clap::Parser;
+
+    use super::RectifyArgs;
+    use crate::cli::{Cli, Command};
+
+    fn rectify_args(extra: &[&str]) -> Result<RectifyArgs, clap::Error> {
+        let mut argv = vec!["castellan", "rectify", "p.jpg", "-o", "r.png"];
+        argv.extend_from_slice(extra);
+        Cli::try_parse_from(argv).map(|c| match c.command {
+            Command::Rectify(a) => a,
+            _ => unreachable!("parsed a rectify command line"),
+        })
+    }
+
+    #[test]
+    fn rectify_output_is_required() {
+        assert!(Cli::try_parse_from(["castellan", "rectify", "p.jpg"]).is_err());
+        assert_eq!(rectify_args(&[]).unwrap().output, PathBuf::from("r.png"));
+    }
+
+    #[test]
+    fn rectify_homography_flag() {
+        assert_eq!(
+            rectify_args(&["--homography", "h.json"])
+                .unwrap()
+                .homography,
+            Some(PathBuf::from("h.json"))
+        );
+    }
+
+    #[test]
+    fn rectify_lines_flag() {
+        assert_eq!(
+            rectify_args(&["--lines", "l.json"]).unwrap().lines,
+            Some(PathBuf::from("l.json"))
+        );
+    }
+
+    #[test]
+    fn rectify_overlay_and_seed_flags() {
+        let a = rectify_args(&["--overlay", "o.png", "--seed", "3"]).unwrap();
+        assert_eq!((a.overlay, a.seed), (Some(PathBuf::from("o.png")), 3));
+        assert_eq!(rectify_args(&[]).unwrap().seed, 7);
+    }
+}

@@ -1,0 +1,164 @@
+//! `castellan rectify` and `castellan facade` as a user runs them: outputs on success, one
+//! clear message naming the file and no output on failure.
+
+use assert_cmd::Command;
+use image::{Rgb, RgbImage};
+
+fn castellan() -> Command {
+    Command::cargo_bin("castellan").unwrap()
+}
+
+/// A wall with two floors of three dark windows, sky above.
+fn facade_image() -> RgbImage {
+    let mut img = RgbImage::from_pixel(120, 90, Rgb([150, 190, 235]));
+    for y in 15..90 {
+        for x in 0..120 {
+            let n = ((x * 7 + y * 13) % 9) as u8;
+            img.put_pixel(x, y, Rgb([180 + n, 130 + n, 95]));
+        }
+    }
+    for f in 0..2 {
+        for k in 0..3 {
+            for y in 25 + 35 * f..45 + 35 * f {
+                for x in 12 + 38 * k..32 + 38 * k {
+                    img.put_pixel(x, y, Rgb([35, 45, 65]));
+                }
+            }
+        }
+    }
+    img
+}
+
+#[test]
+fn rectify_with_manual_lines_writes_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("photo.png");
+    facade_image().save(&img_path).unwrap();
+    let lines = dir.path().join("lines.json");
+    std::fs::write(
+        &lines,
+        r#"{"horizontal": [[10, 20, 110, 25], [10, 70, 110, 68]], "vertical": [[20, 10, 22, 80], [100, 10, 98, 80]]}"#,
+    )
+    .unwrap();
+    let (out, h, ov) = (
+        dir.path().join("r.png"),
+        dir.path().join("h.json"),
+        dir.path().join("o.png"),
+    );
+    castellan()
+        .arg("rectify")
+        .arg(&img_path)
+        .arg("-o")
+        .arg(&out)
+        .arg("--lines")
+        .arg(&lines)
+        .arg("--homography")
+        .arg(&h)
+        .arg("--overlay")
+        .arg(&ov)
+        .assert()
+        .success();
+    let hj: serde_json::Value = serde_json::from_slice(&std::fs::read(&h).unwrap()).unwrap();
+    let rows = hj["H"].as_array().unwrap();
+    assert_eq!(rows.len(), 3);
+    assert!(rows.iter().all(|r| r.as_array().unwrap().len() == 3));
+    let r = image::open(&out).unwrap();
+    assert_eq!(
+        (r.width() as u64, r.height() as u64),
+        (
+            hj["width"].as_u64().unwrap(),
+            hj["height"].as_u64().unwrap()
+        )
+    );
+    assert_eq!(image::open(&ov).unwrap().width(), 120);
+}
+
+#[test]
+fn rectify_of_a_single_colour_image_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("flat.png");
+    RgbImage::from_pixel(64, 64, Rgb([90, 90, 90]))
+        .save(&img_path)
+        .unwrap();
+    let out = dir.path().join("r.png");
+    let a = castellan()
+        .arg("rectify")
+        .arg(&img_path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&a.get_output().stderr).to_string();
+    assert!(err.contains("flat.png") && err.contains("--lines"), "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn facade_writes_the_model_labels_and_overlay() {
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("f.png");
+    facade_image().save(&img_path).unwrap();
+    let training = dir.path().join("t.json");
+    std::fs::write(
+        &training,
+        r#"{"classes": {"window": [[14, 27, 30, 43], [52, 62, 68, 78]], "wall": [[2, 50, 10, 58], [40, 17, 100, 23]], "background": [[5, 2, 115, 12]]}}"#,
+    )
+    .unwrap();
+    let (out, labels, ov) = (
+        dir.path().join("f.json"),
+        dir.path().join("l.png"),
+        dir.path().join("o.png"),
+    );
+    castellan()
+        .arg("facade")
+        .arg(&img_path)
+        .arg("--training")
+        .arg(&training)
+        .arg("-o")
+        .arg(&out)
+        .arg("--labels")
+        .arg(&labels)
+        .arg("--overlay")
+        .arg(&ov)
+        .assert()
+        .success();
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(m["width"], 120);
+    let f = &m["facades"][0];
+    assert_eq!(f["bbox"].as_array().unwrap().len(), 4);
+    assert_eq!(f["params"].as_object().unwrap().len(), 18);
+    assert_eq!(f["params"]["n_w"], 3);
+    let l = image::open(&labels).unwrap().to_luma8();
+    assert_eq!(l.get_pixel(20, 35)[0], 2);
+    assert_eq!(l.get_pixel(60, 5)[0], 0);
+    assert!(ov.exists());
+}
+
+#[test]
+fn facade_rejects_boxes_outside_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("f.png");
+    facade_image().save(&img_path).unwrap();
+    let training = dir.path().join("bad.json");
+    std::fs::write(
+        &training,
+        r#"{"classes": {"window": [[500, 500, 520, 520]], "wall": [[2, 50, 10, 58]]}}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("f.json");
+    let a = castellan()
+        .arg("facade")
+        .arg(&img_path)
+        .arg("--training")
+        .arg(&training)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&a.get_output().stderr).to_string();
+    assert!(
+        err.contains("bad.json") && err.contains("no pixels inside"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
