@@ -4,7 +4,6 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Cursor;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -19,22 +18,10 @@ use crate::output::Outputs;
 
 /// Reads any supported image as grey, naming the file in every error.
 fn read_gray(path: &Path) -> Result<Gray> {
-    let name = path.display();
-    let img = image::ImageReader::open(path)
-        .with_context(|| format!("cannot read {name}"))?
-        .with_guessed_format()
-        .with_context(|| format!("cannot read {name}"))?
-        .decode()
-        .map_err(|e| anyhow!("{name}: not a readable image ({e})"))?;
-    Ok(Gray::from_dynamic(&img))
+    Ok(Gray::from_dynamic(&crate::images::read_image(path)?))
 }
 
-fn png_bytes(img: &image::RgbImage, path: &Path) -> Result<Vec<u8>> {
-    let mut buf = Cursor::new(Vec::new());
-    img.write_to(&mut buf, image::ImageFormat::Png)
-        .with_context(|| format!("cannot encode {}", path.display()))?;
-    Ok(buf.into_inner())
-}
+use crate::images::png as png_bytes;
 
 pub fn run(args: &CornersArgs) -> Result<()> {
     let file = args.image.display().to_string();

@@ -8,8 +8,9 @@ use facade::search::{self, SearchParams};
 use image::{GrayImage, Rgb};
 use std::path::PathBuf;
 
+use crate::images::png;
 use crate::output::Outputs;
-use crate::rectify_cmd::{png_bytes, read_rgb};
+use crate::rectify_cmd::read_rgb;
 
 pub fn run(args: &FacadeArgs) -> Result<()> {
     let file = args.image.display().to_string();
@@ -38,7 +39,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
     if let Some(lp) = &args.labels {
         let g = GrayImage::from_raw(model.width, model.height, labels.clone())
             .ok_or_else(|| anyhow!("label image size"))?;
-        outputs.add(lp, png_bytes(&g)?);
+        outputs.add(lp, png(&g, lp)?);
     }
     if let Some(op) = &args.overlay {
         let mut o = img.clone();
@@ -49,7 +50,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
                 p[k] = ((p[k] as u16 + c[k] as u16) / 2) as u8;
             }
         }
-        outputs.add(op, png_bytes(&o)?);
+        outputs.add(op, png(&o, op)?);
     }
     outputs.commit()?;
     let windows: usize = model

@@ -4,6 +4,7 @@
 mod cli;
 mod corners_cmd;
 mod facade_cmd;
+mod images;
 mod output;
 mod plan_cmd;
 mod rectify_cmd;

@@ -1,7 +1,6 @@
 //! `castellan plan`: read a plan drawing, parse it (dissertation ch. 5), and write PLAN.json,
 //! LABELS.png, the label overlay, the vector SVG and the extruded glTF model.
 
-use std::io::Cursor;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -11,21 +10,11 @@ use anyhow::{Context, Result, anyhow};
 
 use crate::output::Outputs;
 
-fn png(img: &image::DynamicImage, what: &std::path::Path) -> Result<Vec<u8>> {
-    let mut buf = Cursor::new(Vec::new());
-    img.write_to(&mut buf, image::ImageFormat::Png)
-        .with_context(|| format!("cannot encode {}", what.display()))?;
-    Ok(buf.into_inner())
-}
+use crate::images::png;
 
 pub fn run(args: &PlanArgs) -> Result<()> {
     let file = args.image.display().to_string();
-    let img = image::ImageReader::open(&args.image)
-        .with_context(|| format!("cannot read {file}"))?
-        .with_guessed_format()
-        .with_context(|| format!("cannot read {file}"))?
-        .decode()
-        .with_context(|| format!("{file}: not a readable image"))?;
+    let img = crate::images::read_image(&args.image)?;
     let started = Instant::now();
     let parsed =
         plan::parse(&img, &plan::Options::default()).map_err(|e| anyhow!("{file}: {e}"))?;
@@ -35,12 +24,11 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     let doc = plan::output::plan_json(&parsed, args.scale);
     outputs.add(&args.output, serde_json::to_vec_pretty(&doc)?);
     if let Some(path) = &args.labels {
-        let labels = image::DynamicImage::ImageLuma8(plan::output::labels_image(&parsed));
-        outputs.add(path, png(&labels, path)?);
+        outputs.add(path, png(&plan::output::labels_image(&parsed), path)?);
     }
     if let Some(path) = &args.overlay {
         let over = plan::output::overlay(&parsed, &img.to_luma8());
-        outputs.add(path, png(&image::DynamicImage::ImageRgb8(over), path)?);
+        outputs.add(path, png(&over, path)?);
     }
     if let Some(path) = &args.svg {
         outputs.add(path, plan::output::svg(&parsed).into_bytes());

@@ -12,21 +12,7 @@ use crate::output::Outputs;
 
 /// Reads an image as RGB, naming the file on failure.
 pub fn read_rgb(path: &Path) -> Result<image::RgbImage> {
-    Ok(image::open(path)
-        .with_context(|| format!("cannot read image {}", path.display()))?
-        .to_rgb8())
-}
-
-/// PNG bytes of an 8-bit image.
-pub fn png_bytes<P, C>(img: &image::ImageBuffer<P, C>) -> Result<Vec<u8>>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    let mut buf = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut buf, image::ImageFormat::Png)?;
-    Ok(buf.into_inner())
+    Ok(crate::images::read_image(path)?.to_rgb8())
 }
 
 pub fn run(args: &RectifyArgs) -> Result<()> {
@@ -52,7 +38,7 @@ pub fn run(args: &RectifyArgs) -> Result<()> {
     };
     let warped = r.warp(&img).map_err(|e| anyhow!("{file}: {e}"))?;
     let mut outputs = Outputs::default();
-    outputs.add(&args.output, png_bytes(&warped)?);
+    outputs.add(&args.output, crate::images::png(&warped, &args.output)?);
     if let Some(hp) = &args.homography {
         let rows: Vec<[f64; 3]> = (0..3)
             .map(|i| [r.h[(i, 0)], r.h[(i, 1)], r.h[(i, 2)]])
@@ -62,7 +48,10 @@ pub fn run(args: &RectifyArgs) -> Result<()> {
         outputs.add(hp, serde_json::to_vec_pretty(&json)?);
     }
     if let Some(op) = &args.overlay {
-        outputs.add(op, png_bytes(&rectify::draw_overlay(&img, &r))?);
+        outputs.add(
+            op,
+            crate::images::png(&rectify::draw_overlay(&img, &r), op)?,
+        );
     }
     outputs.commit()?;
     eprintln!(

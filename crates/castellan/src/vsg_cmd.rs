@@ -119,11 +119,7 @@ fn check_textures(model: &vsg::Model, program: &Path) -> Result<()> {
 fn png(picture: &vsg::render::Picture) -> Result<Vec<u8>> {
     let image = image::RgbImage::from_raw(picture.width, picture.height, picture.rgb.clone())
         .context("the preview picture has the wrong size")?;
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    image
-        .write_to(&mut bytes, image::ImageFormat::Png)
-        .context("cannot encode the preview PNG")?;
-    Ok(bytes.into_inner())
+    crate::images::png(&image, std::path::Path::new("the preview"))
 }
 
 /// Finds imported programs: beside the importing file first, then in each `--lib` directory.
