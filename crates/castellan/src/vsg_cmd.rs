@@ -30,7 +30,7 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
     let model = vsg::run_with(&file, &src, &options, &mut resolver)
         .map_err(|e| anyhow!("{}", e.render(&file, &src).trim_end()))?;
     let produced = started.elapsed();
-    check_textures(&model, &args.program)?;
+    let textures = read_textures(&model, &args.program)?;
     let export = vsg::export::ExportOptions {
         tessellation: vsg::shape::Tessellation {
             segments: args.segments,
@@ -38,7 +38,7 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         ..Default::default()
     };
     let mut outputs = Outputs::default();
-    let glb = vsg::export::to_glb(&model, &export)
+    let glb = vsg::export::to_glb_with_textures(&model, &export, &textures)
         .with_context(|| format!("cannot export {}", args.output.display()))?;
     outputs.add(&args.output, glb);
     if let Some(obj_path) = &args.obj {
@@ -85,10 +85,11 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
 }
 
 /// Every texture a visible terminal uses must be a readable image, looked up beside the
-/// program; the error names the file and the rule that set it.
-fn check_textures(model: &vsg::Model, program: &Path) -> Result<()> {
+/// program; the error names the file and the rule that set it. Returns the images to embed:
+/// PNG and JPEG files as they are, other formats re-encoded as PNG.
+fn read_textures(model: &vsg::Model, program: &Path) -> Result<vsg::export::Textures> {
     let dir = program.parent().unwrap_or(Path::new(""));
-    let mut seen = std::collections::HashSet::new();
+    let mut textures = vsg::export::Textures::new();
     for node in model.terminals() {
         if node.state != vsg::tree::NodeState::Terminal {
             continue;
@@ -97,22 +98,38 @@ fn check_textures(model: &vsg::Model, program: &Path) -> Result<()> {
         let Some(texture) = &appearance.texture else {
             continue;
         };
-        if !seen.insert(texture.clone()) {
+        if textures.contains_key(texture) {
             continue;
         }
         let path = dir.join(texture);
-        if let Err(e) = image::open(&path) {
-            return Err(anyhow!(
-                "{}:{}: cannot read texture '{}' ({}) set for '{}': {e}",
+        let image = read_texture(&path).map_err(|e| {
+            anyhow!(
+                "{}:{}: cannot read texture '{}' ({}) set for '{}': {e:#}",
                 program.display(),
                 appearance.texture_line,
                 texture,
                 path.display(),
                 model.symbol(node)
-            ));
-        }
+            )
+        })?;
+        textures.insert(texture.clone(), image);
     }
-    Ok(())
+    Ok(textures)
+}
+
+/// One texture file, checked to decode, as PNG or JPEG bytes.
+fn read_texture(path: &Path) -> Result<vsg::export::TextureImage> {
+    let decoded = crate::images::read_image(path)?;
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let (bytes, mime_type) = match image::guess_format(&bytes) {
+        Ok(image::ImageFormat::Png) => (bytes, "image/png"),
+        Ok(image::ImageFormat::Jpeg) => (bytes, "image/jpeg"),
+        _ => (crate::images::png(&decoded.to_rgba8(), path)?, "image/png"),
+    };
+    Ok(vsg::export::TextureImage {
+        bytes,
+        mime_type: mime_type.into(),
+    })
 }
 
 /// Encodes a rendered picture as PNG.

@@ -283,3 +283,51 @@ fn unreadable_texture_names_the_file_and_the_rule() {
         .unwrap();
     run().success();
 }
+
+#[test]
+fn textures_are_embedded_in_the_glb() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("wall.vsg");
+    std::fs::write(
+        &program,
+        "Axiom :: I(\"box\",{4,2,1}){row};\nrow :: repeat(\"X\", {1}){stone};\n\
+         stone :: appearance(\"texture\", {\"brick.png\"}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("wall.glb");
+    let run = || {
+        castellan()
+            .args(["vsg", "run"])
+            .arg(&program)
+            .arg("-o")
+            .arg(&glb)
+            .assert()
+    };
+    let out = run().failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        err.contains("wall.vsg:3: cannot read texture 'brick.png'"),
+        "{err}"
+    );
+    assert!(!glb.exists());
+
+    let brick = image::RgbImage::from_fn(8, 4, |x, y| {
+        image::Rgb([150 + (x * 10) as u8, 60, 40 + y as u8])
+    });
+    let png = dir.path().join("brick.png");
+    brick.save(&png).unwrap();
+    run().success();
+    let bytes = std::fs::read(&glb).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = String::from_utf8_lossy(&bytes[20..20 + json_len]);
+    assert!(json.contains("\"mimeType\":\"image/png\""), "{json}");
+    assert!(json.contains("\"baseColorTexture\""), "{json}");
+    assert!(json.contains("\"TEXCOORD_0\""), "{json}");
+    let file = std::fs::read(&png).unwrap();
+    assert!(
+        bytes[20 + json_len..]
+            .windows(file.len())
+            .any(|w| w == file),
+        "the PNG is embedded byte for byte"
+    );
+}

@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use nalgebra::{Isometry3, Vector3};
-use vsg::export::{ExportOptions, to_glb};
+use vsg::export::{ExportOptions, TextureImage, Textures, to_glb_with_textures};
 use vsg::shape::{Primitive, ShapeType};
 use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
 
@@ -67,7 +67,16 @@ fn install(dir: &Path) -> Result<(), String> {
 
 /// Exports `model`, validates the file, and asserts the report has no errors and no warnings.
 fn assert_valid(name: &str, model: &Model) {
-    let glb = to_glb(model, &ExportOptions::default()).expect("export succeeds");
+    assert_valid_with(name, model, &Textures::new());
+}
+
+/// [`assert_valid`] with embedded texture images.
+fn assert_valid_with(name: &str, model: &Model, textures: &Textures) {
+    let options = ExportOptions {
+        texture_scale: 0.75,
+        ..ExportOptions::default()
+    };
+    let glb = to_glb_with_textures(model, &options, textures).expect("export succeeds");
     let Some(script) = validator() else { return };
     let nanos = SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -333,4 +342,47 @@ fn library_programs_with_unique_shapes_and_imports_are_valid() {
         assert!(!model.unique.is_empty() || name == "round_tower.vsg");
         assert_valid(name, &model);
     }
+}
+
+/// A tiny PNG, as `castellan vsg run` would read it from a file.
+fn png(width: u32, height: u32) -> TextureImage {
+    let img = image::RgbImage::from_fn(width, height, |x, y| {
+        image::Rgb([(x * 40) as u8, (y * 60) as u8, 128])
+    });
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png)
+        .expect("encode a PNG");
+    TextureImage {
+        bytes: bytes.into_inner(),
+        mime_type: "image/png".into(),
+    }
+}
+
+#[test]
+fn textured_model_with_embedded_images_is_valid() {
+    use NodeState::*;
+    let mut t = Tree::new("Castle", Some(prim(ShapeType::Box, &[10.0, 4.0, 6.0])));
+    for texture in ["brick.png", "stone.png"] {
+        t.0.appearances.push(Appearance {
+            color: [0.9, 0.8, 0.7],
+            texture: Some(texture.into()),
+            ..Appearance::default()
+        });
+    }
+    let wall = prim(ShapeType::Box, &[10.0, 4.0, 1.0]);
+    let tower = prim(ShapeType::Cylinder, &[1.0, 6.0]);
+    let turned = Isometry3::new(Vector3::new(4.0, 0.0, 2.0), Vector3::new(0.1, 0.7, 0.0));
+    t.children(
+        0,
+        &[
+            ("Wall", Terminal, wall, at(0.0, 0.0, -2.5), 1),
+            ("Tower", Terminal, tower, turned, 2),
+            ("Gate", Terminal, wall, at(-4.0, 0.0, 2.0), 0),
+            ("Roof", Terminal, wall, at(0.0, 4.0, 0.0), 2),
+        ],
+    );
+    let mut textures = Textures::new();
+    textures.insert("brick.png".into(), png(4, 4));
+    textures.insert("stone.png".into(), png(3, 5));
+    assert_valid_with("textured", &t.0, &textures);
 }

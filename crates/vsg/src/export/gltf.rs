@@ -10,8 +10,8 @@ use serde::Serialize;
 
 use super::shading::{ShadedMesh, shade};
 use super::{
-    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, solid_mesh, solid_volume,
-    unit,
+    ExportError, ExportOptions, Geometry, Palette, ShapeKey, Textures, check_model, solid_mesh,
+    solid_volume, unit,
 };
 use crate::tree::{Appearance, Model, NodeState};
 
@@ -42,6 +42,7 @@ struct MaterialExtras<'a> {
 struct Attributes {
     position: json::Index<json::Accessor>,
     normal: json::Index<json::Accessor>,
+    uv: Option<json::Index<json::Accessor>>,
     indices: json::Index<json::Accessor>,
 }
 
@@ -53,15 +54,30 @@ struct Builder {
     attributes: HashMap<ShapeKey, Option<Attributes>>,
     /// Meshes per distinct primitive and material slot.
     meshes: HashMap<(ShapeKey, u32), Option<json::Index<json::Mesh>>>,
+    /// Texture coordinates on every mesh: real-world size of one texture repeat, when some
+    /// material is textured.
+    uv_scale: Option<f64>,
+    /// Embedded textures by name.
+    textures: HashMap<String, json::Index<json::Texture>>,
 }
 
 pub(super) fn write_glb(
     model: &Model,
     options: &ExportOptions,
+    textures: &Textures,
     geometry: &Geometry,
 ) -> Result<Vec<u8>, ExportError> {
     check_model(model)?;
     let mut b = Builder::default();
+    let textured = model.nodes.iter().enumerate().any(|(i, n)| {
+        n.state == NodeState::Terminal
+            && model.solid(i as u32).is_some()
+            && model.appearances[n.appearance as usize]
+                .texture
+                .as_ref()
+                .is_some_and(|t| textures.contains_key(t))
+    });
+    b.uv_scale = textured.then_some(options.texture_scale);
     b.root.asset = json::Asset {
         generator: Some(concat!("castellan vsg ", env!("CARGO_PKG_VERSION")).into()),
         version: "2.0".into(),
@@ -79,7 +95,21 @@ pub(super) fn write_glb(
             let slot = palette.slot(node.appearance);
             if slot as usize == b.root.materials.len() {
                 let index = palette.used[slot as usize];
-                let m = material(&model.appearances[index as usize], index)?;
+                let appearance = &model.appearances[index as usize];
+                let mut m = material(appearance, index)?;
+                if let Some((name, image)) = appearance
+                    .texture
+                    .as_ref()
+                    .and_then(|t| textures.get_key_value(t))
+                {
+                    let texture = b.add_texture(name, image);
+                    m.pbr_metallic_roughness.base_color_texture = Some(json::texture::Info {
+                        index: texture,
+                        tex_coord: 0,
+                        extensions: None,
+                        extras: None,
+                    });
+                }
                 b.root.materials.push(m);
             }
             mesh = match b.meshes.get(&(key, slot)) {
@@ -170,7 +200,7 @@ impl Builder {
         &mut self,
         start: usize,
         stride: Option<usize>,
-        target: json::buffer::Target,
+        target: Option<json::buffer::Target>,
     ) -> json::Index<json::buffer::View> {
         let view = json::buffer::View {
             buffer: json::Index::new(0),
@@ -178,7 +208,7 @@ impl Builder {
             byte_offset: Some(USize64(start as u64)),
             byte_stride: stride.map(json::buffer::Stride),
             name: None,
-            target: Some(Valid(target)),
+            target: target.map(Valid),
             extensions: None,
             extras: None,
         };
@@ -214,32 +244,84 @@ impl Builder {
         })
     }
 
-    /// Writes interleaved positions and normals (f32, stride 24) and indices (u16 when they
-    /// fit, else u32); `None` for a mesh without triangles.
+    /// Embeds texture `name` (once) as an image in the binary chunk, drawn with the one
+    /// repeating, linearly filtered sampler.
+    fn add_texture(
+        &mut self,
+        name: &str,
+        image: &super::TextureImage,
+    ) -> json::Index<json::Texture> {
+        if let Some(&t) = self.textures.get(name) {
+            return t;
+        }
+        let sampler = match self.root.samplers.len() {
+            0 => self.root.push(json::texture::Sampler {
+                mag_filter: Some(Valid(json::texture::MagFilter::Linear)),
+                min_filter: Some(Valid(json::texture::MinFilter::Linear)),
+                name: None,
+                wrap_s: Valid(json::texture::WrappingMode::Repeat),
+                wrap_t: Valid(json::texture::WrappingMode::Repeat),
+                extensions: None,
+                extras: None,
+            }),
+            _ => json::Index::new(0),
+        };
+        let start = self.align();
+        self.bin.extend_from_slice(&image.bytes);
+        let view = self.view(start, None, None);
+        let source = self.root.push(json::Image {
+            buffer_view: Some(view),
+            mime_type: Some(json::image::MimeType(image.mime_type.clone())),
+            name: Some(name.to_owned()),
+            uri: None,
+            extensions: None,
+            extras: None,
+        });
+        let texture = self.root.push(json::Texture {
+            name: Some(name.to_owned()),
+            sampler: Some(sampler),
+            source,
+            extensions: None,
+            extras: None,
+        });
+        self.textures.insert(name.to_owned(), texture);
+        texture
+    }
+
+    /// Writes interleaved positions, normals and, when textured, texture coordinates (f32,
+    /// stride 24 or 32) and indices (u16 when they fit, else u32); `None` for a mesh without
+    /// triangles.
     fn add_attributes(&mut self, name: &str, mesh: &ShadedMesh) -> Option<Attributes> {
         use json::accessor::{ComponentType, Type};
         if mesh.triangles.is_empty() {
             return None;
         }
         let start = self.align();
+        let stride = if self.uv_scale.is_some() { 32 } else { 24 };
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
         self.bin
-            .reserve(mesh.positions.len() * 24 + mesh.triangles.len() * 12 + 4);
-        for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
-            let p = p.map(|c| c as f32);
+            .reserve(mesh.positions.len() * stride + mesh.triangles.len() * 12 + 4);
+        for (&local, &normal) in mesh.positions.iter().zip(&mesh.normals) {
+            let p = local.map(|c| c as f32);
             for k in 0..3 {
                 lo[k] = lo[k].min(p[k]);
                 hi[k] = hi[k].max(p[k]);
             }
             // Renormalise in f32 so the validator's unit-length check holds exactly enough.
-            let n = n.map(|c| c as f32);
+            let n = normal.map(|c| c as f32);
             let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             for c in p.into_iter().chain(n.map(|c| c / len)) {
                 self.bin.extend_from_slice(&c.to_le_bytes());
             }
+            if let Some(scale) = self.uv_scale {
+                for c in box_uv(local, normal, scale) {
+                    self.bin.extend_from_slice(&(c as f32).to_le_bytes());
+                }
+            }
         }
-        let vertices = self.view(start, Some(24), json::buffer::Target::ArrayBuffer);
+        let target = Some(json::buffer::Target::ArrayBuffer);
+        let vertices = self.view(start, Some(stride), target);
         let count = mesh.positions.len();
         let position = self.accessor(
             vertices,
@@ -250,6 +332,9 @@ impl Builder {
             Some((lo, hi)),
         );
         let normal = self.accessor(vertices, 12, count, ComponentType::F32, Type::Vec3, None);
+        let uv = self
+            .uv_scale
+            .map(|_| self.accessor(vertices, 24, count, ComponentType::F32, Type::Vec2, None));
 
         let start = self.align();
         // u16 indices must stay below 65535 (the primitive-restart value).
@@ -264,7 +349,7 @@ impl Builder {
             }
             ComponentType::U32
         };
-        let view = self.view(start, None, json::buffer::Target::ElementArrayBuffer);
+        let view = self.view(start, None, Some(json::buffer::Target::ElementArrayBuffer));
         let indices = self.accessor(
             view,
             0,
@@ -279,6 +364,7 @@ impl Builder {
         Some(Attributes {
             position,
             normal,
+            uv,
             indices,
         })
     }
@@ -309,8 +395,10 @@ impl Builder {
             (Valid(json::mesh::Semantic::Positions), a.position),
             (Valid(json::mesh::Semantic::Normals), a.normal),
         ];
+        let uv =
+            a.uv.map(|uv| (Valid(json::mesh::Semantic::TexCoords(0)), uv));
         let primitive = json::mesh::Primitive {
-            attributes: attributes.into_iter().collect(),
+            attributes: attributes.into_iter().chain(uv).collect(),
             extensions: None,
             extras: None,
             indices: Some(a.indices),
@@ -366,4 +454,23 @@ impl Builder {
         }
         Ok(out)
     }
+}
+
+/// Texture coordinates of a vertex at local position `p` with normal `n` by box projection at
+/// real scale: `p` projected onto the plane perpendicular to `n`'s dominant axis, seen from
+/// outside (so textures are not mirrored, up is +Y on walls), divided by `scale` (model units
+/// per texture repeat); v grows downwards as glTF expects.
+pub(super) fn box_uv(p: [f64; 3], n: [f64; 3], scale: f64) -> [f64; 2] {
+    let [x, y, z] = p;
+    let a = n.map(f64::abs);
+    let sign = |c: f64| if c < 0.0 { -1.0 } else { 1.0 };
+    let (u, v) = if a[1] > a[0] && a[1] > a[2] {
+        (x, -z * sign(n[1]))
+    } else if a[0] >= a[2] {
+        (-z * sign(n[0]), y)
+    } else {
+        (x * sign(n[2]), y)
+    };
+    let scale = if scale.is_normal() { scale.abs() } else { 1.0 };
+    [u / scale, -v / scale]
 }

@@ -20,6 +20,10 @@ pub struct ExportOptions {
     /// Faces of one mesh meeting at more than this angle (degrees) get separate vertices, so
     /// boxes look flat and cylinders smooth; normals are averaged across smaller angles.
     pub crease_angle_deg: f64,
+    /// Real-world size of one texture repeat, in model units per texture width (and height):
+    /// texture coordinates are box-projected local positions divided by this, so a texture
+    /// embedded with [`to_glb_with_textures`] keeps its scale on faces of any size.
+    pub texture_scale: f64,
 }
 
 impl Default for ExportOptions {
@@ -27,6 +31,7 @@ impl Default for ExportOptions {
         ExportOptions {
             tessellation: Tessellation::default(),
             crease_angle_deg: 40.0,
+            texture_scale: 1.0,
         }
     }
 }
@@ -55,11 +60,37 @@ pub enum ExportError {
 /// with its local transform and shape data in `extras`), meshes on visible terminals only,
 /// shared between terminals with bit-identical primitives and equal appearances.
 pub fn to_glb(model: &Model, options: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+    to_glb_with_textures(model, options, &Textures::new())
+}
+
+/// An encoded texture image to embed in a GLB.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TextureImage {
+    /// The file's bytes, PNG or JPEG.
+    pub bytes: Vec<u8>,
+    /// `"image/png"` or `"image/jpeg"`, matching `bytes`.
+    pub mime_type: String,
+}
+
+/// Texture images by the name an appearance gives (`appearance("texture", {...})`).
+pub type Textures = std::collections::BTreeMap<String, TextureImage>;
+
+/// Like [`to_glb`], and embeds the image of every texture a visible terminal uses that
+/// `textures` holds: materials get a `baseColorTexture` (tinted by their colour) and, when
+/// any material is textured, all meshes get `TEXCOORD_0` by box projection at real scale
+/// ([`ExportOptions::texture_scale`]). Textures missing from `textures` stay names in the
+/// material `extras` only.
+pub fn to_glb_with_textures(
+    model: &Model,
+    options: &ExportOptions,
+    textures: &Textures,
+) -> Result<Vec<u8>, ExportError> {
     let mesh = |p: &Primitive| p.mesh(&options.tessellation);
     let volume = |p: &Primitive| p.volume();
     gltf::write_glb(
         model,
         options,
+        textures,
         &Geometry {
             mesh: &mesh,
             volume: &volume,

@@ -39,6 +39,7 @@ fn read_accessor(json: &Value, bin: &[u8], index: u64) -> Vec<Vec<f64>> {
     let view = &json["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
     let width = match acc["type"].as_str().unwrap() {
         "VEC3" => 3,
+        "VEC2" => 2,
         "SCALAR" => 1,
         other => panic!("unexpected type {other}"),
     };
@@ -293,4 +294,96 @@ fn large_meshes_switch_to_u32_indices() {
         indices.iter().map(|i| i[0] as usize).max(),
         Some(positions.len() - 1)
     );
+}
+
+#[test]
+fn textures_are_embedded_with_real_scale_uvs() {
+    let model = castle();
+    let png = b"\x89PNG\r\n\x1a\nnot really, but bytes".to_vec();
+    let mut textures = Textures::new();
+    textures.insert(
+        "bricks.png".into(),
+        TextureImage {
+            bytes: png.clone(),
+            mime_type: "image/png".into(),
+        },
+    );
+    let options = ExportOptions {
+        texture_scale: 2.0,
+        ..ExportOptions::default()
+    };
+    let geometry = Geometry {
+        mesh: &box_mesh,
+        volume: &box_volume,
+    };
+    let glb = super::gltf::write_glb(&model, &options, &textures, &geometry).unwrap();
+    let (json, bin) = parse_glb(&glb);
+    assert_eq!(json["images"].as_array().unwrap().len(), 1);
+    assert_eq!(json["textures"].as_array().unwrap().len(), 1);
+    assert_eq!(json["samplers"].as_array().unwrap().len(), 1);
+    assert_eq!(json["samplers"][0]["wrapS"], 10497);
+    assert_eq!(json["samplers"][0]["wrapT"], 10497);
+    let image = &json["images"][0];
+    assert_eq!(image["mimeType"], "image/png");
+    let view = &json["bufferViews"][image["bufferView"].as_u64().unwrap() as usize];
+    let start = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+    assert_eq!(start % 4, 0);
+    let len = view["byteLength"].as_u64().unwrap() as usize;
+    assert_eq!(&bin[start..start + len], &png[..], "image bytes round-trip");
+
+    // The textured material (appearance 0, tinted by its colour) draws a mesh.
+    let materials = json["materials"].as_array().unwrap();
+    let textured: Vec<usize> = (0..materials.len())
+        .filter(|&m| materials[m]["pbrMetallicRoughness"]["baseColorTexture"]["index"] == 0)
+        .collect();
+    assert_eq!(textured.len(), 1);
+    let tint = &materials[textured[0]]["pbrMetallicRoughness"]["baseColorFactor"];
+    assert!(
+        (tint[0].as_f64().unwrap() - 0.9).abs() < 1e-6,
+        "tinted by the colour"
+    );
+    let primitive = json["meshes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| &m["primitives"][0])
+        .find(|p| p["material"].as_u64() == Some(textured[0] as u64))
+        .expect("a mesh drawn with the textured material");
+    let attributes = &primitive["attributes"];
+    let uvs = read_accessor(&json, bin, attributes["TEXCOORD_0"].as_u64().unwrap());
+    let positions = read_accessor(&json, bin, attributes["POSITION"].as_u64().unwrap());
+    let normals = read_accessor(&json, bin, attributes["NORMAL"].as_u64().unwrap());
+    assert_eq!(uvs.len(), positions.len());
+    for ((uv, p), n) in uvs.iter().zip(&positions).zip(&normals) {
+        let p = [p[0], p[1], p[2]];
+        let expected = super::gltf::box_uv(p, [n[0], n[1], n[2]], 2.0);
+        assert!((uv[0] - expected[0]).abs() < 1e-6 && (uv[1] - expected[1]).abs() < 1e-6);
+        // Real scale: along a face, the UV distance is the model distance over the scale.
+        if n[2].abs() > 0.9 {
+            assert!((uv[0].abs() - p[0].abs() / 2.0).abs() < 1e-6);
+            assert!((uv[1].abs() - p[1].abs() / 2.0).abs() < 1e-6);
+        }
+    }
+
+    // Without texture images the export is unchanged.
+    let plain = super::gltf::write_glb(&model, &options, &Textures::new(), &geometry).unwrap();
+    let (plain_json, _) = parse_glb(&plain);
+    assert!(plain_json.get("images").is_none());
+    assert!(
+        plain_json["meshes"][0]["primitives"][0]["attributes"]
+            .get("TEXCOORD_0")
+            .is_none()
+    );
+    assert_eq!(plain, glb_with(&model, &box_mesh));
+}
+
+#[test]
+fn box_uv_projects_on_the_dominant_axis() {
+    use super::gltf::box_uv;
+    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], 1.0), [1.0, -2.0]);
+    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, -1.0], 2.0), [-0.5, -1.0]);
+    assert_eq!(box_uv([1.0, 2.0, 3.0], [1.0, 0.0, 0.0], 1.0), [-3.0, -2.0]);
+    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 1.0, 0.0], 1.0), [1.0, 3.0]);
+    // A degenerate scale falls back to 1.
+    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], 0.0), [1.0, -2.0]);
 }

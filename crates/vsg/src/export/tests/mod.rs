@@ -192,7 +192,13 @@ fn glb_with(model: &Model, mesh: &dyn Fn(&Primitive) -> TriMesh) -> Vec<u8> {
         mesh,
         volume: &box_volume,
     };
-    super::gltf::write_glb(model, &ExportOptions::default(), &geometry).expect("export succeeds")
+    super::gltf::write_glb(
+        model,
+        &ExportOptions::default(),
+        &Textures::new(),
+        &geometry,
+    )
+    .expect("export succeeds")
 }
 
 fn obj_of(model: &Model) -> (String, String) {
@@ -224,7 +230,7 @@ fn broken_references_are_errors() {
     let options = ExportOptions::default();
     let mut model = castle();
     model.nodes[5].appearance = 9;
-    let err = super::gltf::write_glb(&model, &options, &geometry).unwrap_err();
+    let err = super::gltf::write_glb(&model, &options, &Textures::new(), &geometry).unwrap_err();
     assert!(matches!(
         err,
         ExportError::BadReference {
@@ -245,7 +251,7 @@ fn broken_references_are_errors() {
         mesh: &bad_mesh,
         volume: &box_volume,
     };
-    let err = super::gltf::write_glb(&castle(), &options, &geometry).unwrap_err();
+    let err = super::gltf::write_glb(&castle(), &options, &Textures::new(), &geometry).unwrap_err();
     assert!(
         matches!(err, ExportError::BadMesh { kind: "box", .. }),
         "{err}"
