@@ -335,49 +335,8 @@ mod tests {
         }
     }
 
-    /// Closed meshes with the exact volume and size; splits that conserve volume and give
-    /// valid pieces whose vertices lie in the parent solid.
     fn check(p: &Primitive, axis: Axis, fractions: &[f64]) -> Vec<Piece> {
-        let m = p.mesh(&Tessellation::default());
-        assert!(m.is_closed_oriented(), "{}", p.kind);
-        assert!(m.positions.iter().all(|&v| contains(p, v)));
-        assert!(
-            close(m.signed_volume(), p.volume()),
-            "{}: {}",
-            p.kind,
-            m.signed_volume()
-        );
-        let (lo, hi) = m.bounds().unwrap();
-        let size = p.size();
-        assert!(
-            (0..3).all(|k| close(hi[k] - lo[k], size[k])),
-            "{} size",
-            p.kind
-        );
-        let extent = p.extent(axis).unwrap();
-        let lengths: Vec<f64> = fractions.iter().map(|f| f * extent).collect();
-        let pieces = p.split(axis, &lengths).unwrap();
-        let sum: f64 = pieces.iter().map(|q| q.primitive.volume()).sum();
-        assert!(
-            (sum - p.volume()).abs() <= 1e-9 * p.volume(),
-            "{} {axis}",
-            p.kind
-        );
-        for q in &pieces {
-            let r = Primitive::new(q.primitive.kind, q.primitive.params());
-            assert_eq!(
-                r.as_ref(),
-                Ok(&q.primitive),
-                "{} {axis}: invalid piece",
-                p.kind
-            );
-            let qm = q.primitive.mesh(&Tessellation::default());
-            assert!(qm.is_closed_oriented() && close(qm.signed_volume(), q.primitive.volume()));
-            for w in placed(q) {
-                assert!(contains(p, w), "{} {axis}: {w:?} outside", p.kind);
-            }
-        }
-        pieces
+        crate::shape::tests::check_planar_split(p, axis, fractions, contains)
     }
 
     fn kinds(pieces: &[Piece]) -> Vec<ShapeType> {

@@ -205,3 +205,70 @@ fn wrong_parameter_counts_and_values_are_errors() {
     ));
     assert!(Primitive::new(ShapeType::SphericalSector, &[1.0, PI, TAU / 4.0]).is_ok());
 }
+
+/// Closed meshes with the exact volume and size; splits that conserve volume and give valid
+/// pieces whose vertices lie in the parent solid, as `contains` decides. Shared by the
+/// planar families (prism, wedge), whose meshes are exact.
+pub(super) fn check_planar_split(
+    p: &Primitive,
+    axis: Axis,
+    fractions: &[f64],
+    contains: impl Fn(&Primitive, [f64; 3]) -> bool,
+) -> Vec<Piece> {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0);
+    let m = p.mesh(&Tessellation::default());
+    assert!(m.is_closed_oriented(), "{} mesh", p.kind);
+    assert!(
+        m.positions.iter().all(|&v| contains(p, v)),
+        "{} mesh outside",
+        p.kind
+    );
+    assert!(
+        close(m.signed_volume(), p.volume()),
+        "{}: {}",
+        p.kind,
+        m.signed_volume()
+    );
+    let (lo, hi) = m.bounds().unwrap();
+    let size = p.size();
+    assert!(
+        (0..3).all(|k| close(hi[k] - lo[k], size[k])),
+        "{} size",
+        p.kind
+    );
+    let extent = p.extent(axis).unwrap();
+    let lengths: Vec<f64> = fractions.iter().map(|f| f * extent).collect();
+    let pieces = p.split(axis, &lengths).unwrap();
+    let sum: f64 = pieces.iter().map(|q| q.primitive.volume()).sum();
+    assert!(
+        (sum - p.volume()).abs() <= 1e-9 * p.volume(),
+        "{} {axis}",
+        p.kind
+    );
+    for q in &pieces {
+        let r = Primitive::new(q.primitive.kind, q.primitive.params());
+        assert_eq!(
+            r.as_ref(),
+            Ok(&q.primitive),
+            "{} {axis}: invalid piece",
+            p.kind
+        );
+        let qm = q.primitive.mesh(&Tessellation::default());
+        assert!(
+            qm.is_closed_oriented(),
+            "{} {axis}: {:?}",
+            p.kind,
+            q.primitive
+        );
+        assert!(close(qm.signed_volume(), q.primitive.volume()));
+        for v in &qm.positions {
+            let x = q.transform * nalgebra::Point3::new(v[0], v[1], v[2]);
+            assert!(
+                contains(p, [x.x, x.y, x.z]),
+                "{} {axis}: {x} outside",
+                p.kind
+            );
+        }
+    }
+    pieces
+}

@@ -331,53 +331,8 @@ mod tests {
             && lam >= w.s - c * y - tol
     }
 
-    /// Closed meshes with the exact volume and size; splits that conserve volume and give
-    /// valid pieces whose vertices lie in the parent solid.
     fn check(p: &Primitive, axis: Axis, fractions: &[f64]) -> Vec<Piece> {
-        let m = p.mesh(&Tessellation::default());
-        assert!(m.is_closed_oriented(), "{} mesh", p.kind);
-        assert!(
-            close(m.signed_volume(), p.volume()),
-            "{}: {}",
-            p.kind,
-            m.signed_volume()
-        );
-        assert!(m.positions.iter().all(|&v| contains(p, v)));
-        let extent = p.extent(axis).unwrap();
-        let lengths: Vec<f64> = fractions.iter().map(|f| f * extent).collect();
-        let pieces = p.split(axis, &lengths).unwrap();
-        let sum: f64 = pieces.iter().map(|q| q.primitive.volume()).sum();
-        assert!(
-            (sum - p.volume()).abs() <= 1e-9 * p.volume(),
-            "{} {axis}",
-            p.kind
-        );
-        for q in &pieces {
-            let r = Primitive::new(q.primitive.kind, q.primitive.params());
-            assert_eq!(
-                r.as_ref(),
-                Ok(&q.primitive),
-                "{} {axis}: invalid piece",
-                p.kind
-            );
-            let qm = q.primitive.mesh(&Tessellation::default());
-            assert!(
-                qm.is_closed_oriented(),
-                "{} {axis}: {:?}",
-                p.kind,
-                q.primitive
-            );
-            assert!(close(qm.signed_volume(), q.primitive.volume()));
-            for v in &qm.positions {
-                let x = q.transform * Point3::new(v[0], v[1], v[2]);
-                assert!(
-                    contains(p, [x.x, x.y, x.z]),
-                    "{} {axis}: {x} outside",
-                    p.kind
-                );
-            }
-        }
-        pieces
+        crate::shape::tests::check_planar_split(p, axis, fractions, contains)
     }
 
     fn kinds(pieces: &[Piece]) -> Vec<ShapeType> {
