@@ -27,20 +27,20 @@ fn best_band(prof: &[f64]) -> Option<(f64, usize, usize)> {
 
 /// Vertical layout, in coordinates relative to the façade top (rows 0..fh).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct Vertical {
-    merit: f64,
-    n_l: u32,
-    h_1: usize,
-    h_nl: usize,
+pub(super) struct Vertical {
+    pub(super) merit: f64,
+    pub(super) n_l: u32,
+    pub(super) h_1: usize,
+    pub(super) h_nl: usize,
     /// (window height, window-to-floor-bottom) for ground, middle, top.
-    ground: (usize, usize),
-    middle: (usize, usize),
-    top: (usize, usize),
+    pub(super) ground: (usize, usize),
+    pub(super) middle: (usize, usize),
+    pub(super) top: (usize, usize),
 }
 
 impl Vertical {
     /// Window row set (relative rows), as intervals.
-    fn rows(&self, fh: usize) -> Vec<(usize, usize)> {
+    pub(super) fn rows(&self, fh: usize) -> Vec<(usize, usize)> {
         let p = self.params_stub(fh);
         p.floor_bands()
             .into_iter()
@@ -49,7 +49,7 @@ impl Vertical {
             .collect()
     }
 
-    fn params_stub(&self, fh: usize) -> FacadeParams {
+    pub(super) fn params_stub(&self, fh: usize) -> FacadeParams {
         let mid = self.n_l.saturating_sub(2).max(1) as f64;
         FacadeParams {
             x_fl: 0.0,
@@ -88,14 +88,21 @@ fn floor_band(rows: &[f64], f0: usize, f1: usize) -> (f64, (usize, usize)) {
 
 /// Exhaustive search of the vertical parameters given the row profile (window-minus-wall
 /// log-likelihood summed over the current window columns). `cands` are relative split rows.
-fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
+pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
     let fh = rows.len();
     let mut best = Vertical {
         merit: f64::NEG_INFINITY,
         ..Default::default()
     };
+    // Ties go to fewer floors: a window-less sliver floor adds no merit, and §3.1.7 does not
+    // say which of equal-merit layouts to keep (departure, measured on synthetic façades whose
+    // floor lines carry no edge: without it an empty 10-px attic floor was added).
     let mut consider = |v: Vertical| {
-        if v.merit > best.merit {
+        let tol = 1e-9 * best.merit.abs().max(1.0);
+        if !best.merit.is_finite()
+            || v.merit > best.merit + tol
+            || (v.merit >= best.merit - tol && v.n_l < best.n_l)
+        {
             best = v;
         }
     };
@@ -173,17 +180,17 @@ fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
 
 /// Horizontal layout relative to the façade's left edge.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct Horizontal {
-    merit: f64,
-    off: usize,
-    w: usize,
-    gap: usize,
-    n: usize,
+pub(super) struct Horizontal {
+    pub(super) merit: f64,
+    pub(super) off: usize,
+    pub(super) w: usize,
+    pub(super) gap: usize,
+    pub(super) n: usize,
 }
 
 /// Exhaustive search of {w_off, w_w, w_gap, N_w} over candidate columns, given the column
 /// profile summed over the current window rows.
-fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
+pub(super) fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
     let fw = cols.len();
     let mut pre = vec![0f64; fw + 1];
     for (i, v) in cols.iter().enumerate() {
@@ -235,81 +242,22 @@ fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
 }
 
 /// Fits the floors and windows of the façade `r` = [x0, y0, x1, y1] given the integral of the
-/// window-minus-wall log-likelihood (§3.1.7).
+/// window-minus-wall log-likelihood (§3.1.7): the joint search of [`super::joint`] over this
+/// one façade.
 pub fn fit_floors(
     r: [usize; 4],
     d: &Integral,
     grads: &Gradients,
     p: &SearchParams,
 ) -> FacadeParams {
-    let [x0, y0, x1, y1] = r;
-    let (fw, fh) = (x1 - x0, y1 - y0);
-    let xc: Vec<usize> = grads.x_peaks(r, p).into_iter().map(|x| x - x0).collect();
-    let yc: Vec<usize> = grads.y_peaks(r, p).into_iter().map(|y| y - y0).collect();
-    let col_profile = |rows: &[(usize, usize)]| -> Vec<f64> {
-        (0..fw)
-            .map(|x| {
-                rows.iter()
-                    .map(|&(a, b)| d.sum(x0 + x, y0 + a, x0 + x + 1, y0 + b))
-                    .sum()
-            })
-            .collect()
+    let one = super::joint::JointFacade {
+        rect: r,
+        window_minus_wall: d,
+        gradients: grads,
     };
-    let row_profile = |cols: &[(usize, usize)]| -> Vec<f64> {
-        (0..fh)
-            .map(|y| {
-                cols.iter()
-                    .map(|&(a, b)| d.sum(x0 + a, y0 + y, x0 + b, y0 + y + 1))
-                    .sum()
-            })
-            .collect()
-    };
-    // Start: rows whose window-minus-wall sum is above the median row's.
-    let all = row_profile(&[(0, fw)]);
-    let mut sorted = all.clone();
-    sorted.sort_by(|a, b| a.total_cmp(b));
-    let median = sorted.get(fh / 2).copied().unwrap_or(0.0);
-    let mut rows: Vec<(usize, usize)> = (0..fh)
-        .filter(|&y| all[y] > median)
-        .map(|y| (y, y + 1))
-        .collect();
-    let mut hor = Horizontal::default();
-    let mut ver = Vertical::default();
-    for _ in 0..p.rounds.max(1) {
-        let new_hor = search_horizontal(&col_profile(&rows), &xc);
-        let cols: Vec<(usize, usize)> = (0..new_hor.n)
-            .map(|k| {
-                let a = new_hor.off + k * (new_hor.w + new_hor.gap);
-                (a, a + new_hor.w)
-            })
-            .collect();
-        let new_ver = if cols.is_empty() {
-            Vertical {
-                n_l: 1,
-                h_1: fh,
-                ..Default::default()
-            }
-        } else {
-            search_vertical(&row_profile(&cols), &yc)
-        };
-        let same = new_hor == hor && new_ver == ver;
-        hor = new_hor;
-        ver = new_ver;
-        rows = ver.rows(fh);
-        if same || cols.is_empty() || rows.is_empty() {
-            break;
-        }
-    }
-    let mut params = ver.params_stub(fh);
-    params.x_fl = x0 as f64;
-    params.x_fr = x1 as f64;
-    params.y_ft = y0 as f64;
-    params.y_fb = y1 as f64;
-    params.w_off = hor.off as f64;
-    params.w_w = hor.w as f64;
-    params.w_gap = hor.gap as f64;
-    params.n_w = if rows.is_empty() { 0 } else { hor.n as u32 };
-    params
+    super::joint::fit_floors_joint(&[one], p)
+        .pop()
+        .expect("one façade in, one out")
 }
 
 #[cfg(test)]

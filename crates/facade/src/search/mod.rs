@@ -4,6 +4,7 @@
 
 pub mod boundary;
 pub mod floors;
+pub mod joint;
 
 use image::RgbImage;
 
