@@ -1,0 +1,213 @@
+//! Correspondences (§6.1.1): a plan point selects the structure whose footprint contains it;
+//! on a rectangle the façade takes the nearest side, on a circle the arc between the two
+//! points (counter-clockwise on the drawing). A photo point selects the façade whose
+//! rectified boundary contains it.
+
+use std::f64::consts::{PI, TAU};
+
+use facade::model::FacadeModel;
+
+use crate::estimate::{Footprint, Structure};
+
+/// Where on a structure a façade goes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Placement {
+    /// `north`, `south`, `east` or `west`, and that side's length (model units).
+    Side { side: &'static str, length: f64 },
+    /// Start and end angle (counter-clockwise on the drawing, 0 = +x) and the diameter.
+    Arc { start: f64, end: f64, diameter: f64 },
+}
+
+/// Coordinates of `p` in a rectangle's frame: along its first side, then across.
+fn local(center: [f64; 2], rotation: f64, p: [f64; 2]) -> (f64, f64) {
+    let (dx, dy) = (p[0] - center[0], p[1] - center[1]);
+    let (c, s) = (rotation.cos(), rotation.sin());
+    (dx * c + dy * s, -dx * s + dy * c)
+}
+
+fn area(f: &Footprint) -> f64 {
+    match f {
+        Footprint::Rectangle { size, .. } => size[0] * size[1],
+        Footprint::Circle { radius, .. } => PI * radius * radius,
+    }
+}
+
+/// Whether a point (model units, plan frame) lies inside a footprint.
+pub fn contains(f: &Footprint, p: [f64; 2]) -> bool {
+    match f {
+        Footprint::Rectangle {
+            center,
+            size,
+            rotation,
+        } => {
+            let (u, v) = local(*center, *rotation, p);
+            u.abs() <= size[0] / 2.0 && v.abs() <= size[1] / 2.0
+        }
+        Footprint::Circle { center, radius } => {
+            (p[0] - center[0]).hypot(p[1] - center[1]) <= *radius
+        }
+    }
+}
+
+/// The smallest structure containing `p` (so a tower wins over the curtain wall it sits on).
+pub fn structure_at(structures: &[Structure], p: [f64; 2]) -> Option<usize> {
+    structures
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| contains(&s.footprint, p))
+        .min_by(|a, b| area(&a.1.footprint).total_cmp(&area(&b.1.footprint)))
+        .map(|(i, _)| i)
+}
+
+/// The angle of `p` about `c`, counter-clockwise as the drawing is seen (image y is down).
+fn drawing_angle(c: [f64; 2], p: [f64; 2]) -> f64 {
+    (-(p[1] - c[1])).atan2(p[0] - c[0])
+}
+
+/// Where the façade goes on `footprint`, given the plan points (model units).
+pub fn place(footprint: &Footprint, points: &[[f64; 2]]) -> Placement {
+    match footprint {
+        Footprint::Rectangle {
+            center,
+            size,
+            rotation,
+        } => {
+            let (u, v) = local(*center, *rotation, points[0]);
+            let (a, b) = (size[0] / 2.0, size[1] / 2.0);
+            let sides = [
+                ("north", (v + b).abs(), size[0]),
+                ("south", (v - b).abs(), size[0]),
+                ("east", (u - a).abs(), size[1]),
+                ("west", (u + a).abs(), size[1]),
+            ];
+            let (side, _, length) = sides
+                .into_iter()
+                .min_by(|x, y| x.1.total_cmp(&y.1))
+                .expect("four sides");
+            Placement::Side { side, length }
+        }
+        Footprint::Circle { center, radius } => {
+            let (start, end) = match points {
+                [p] => {
+                    // One point: the half of the tower a photo of it can show, centred there.
+                    let mid = drawing_angle(*center, *p);
+                    (mid - PI / 2.0, mid + PI / 2.0)
+                }
+                [p, q, ..] => {
+                    let a = drawing_angle(*center, *p);
+                    let mut b = drawing_angle(*center, *q);
+                    while b <= a {
+                        b += TAU;
+                    }
+                    (a, b)
+                }
+                [] => (0.0, TAU),
+            };
+            Placement::Arc {
+                start,
+                end,
+                diameter: 2.0 * radius,
+            }
+        }
+    }
+}
+
+/// Index of the façade whose bounding box contains `p` (rectified pixels).
+pub fn facade_at(model: &FacadeModel, p: [f64; 2]) -> Option<usize> {
+    model.facades.iter().position(|f| {
+        let [x0, y0, x1, y1] = f.bbox;
+        (x0..=x1).contains(&p[0]) && (y0..=y1).contains(&p[1])
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rect() -> Footprint {
+        Footprint::Rectangle {
+            center: [100.0, 50.0],
+            size: [40.0, 20.0],
+            rotation: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_point_selects_the_nearest_side() {
+        let f = rect();
+        let side = |p| match place(&f, &[p]) {
+            Placement::Side { side, length } => (side, length),
+            other => panic!("{other:?}"),
+        };
+        // Image y is down: north is the top edge (smaller y).
+        assert_eq!(side([100.0, 42.0]), ("north", 40.0));
+        assert_eq!(side([100.0, 58.0]), ("south", 40.0));
+        assert_eq!(side([118.0, 50.0]), ("east", 20.0));
+        assert_eq!(side([82.0, 50.0]), ("west", 20.0));
+    }
+
+    #[test]
+    fn a_rotated_rectangle_turns_its_sides() {
+        let f = Footprint::Rectangle {
+            center: [0.0, 0.0],
+            size: [40.0, 20.0],
+            rotation: PI / 2.0,
+        };
+        // The first side now runs along +y (down the image): "east" is at +y.
+        assert!(contains(&f, [0.0, 19.0]) && !contains(&f, [19.0, 0.0]));
+        assert_eq!(
+            place(&f, &[[0.0, 18.0]]),
+            Placement::Side {
+                side: "east",
+                length: 20.0
+            }
+        );
+    }
+
+    #[test]
+    fn arcs_run_counter_clockwise_between_the_points() {
+        let f = Footprint::Circle {
+            center: [0.0, 0.0],
+            radius: 10.0,
+        };
+        // East (+x) then north (−y on the image): a quarter turn counter-clockwise.
+        let Placement::Arc {
+            start,
+            end,
+            diameter,
+        } = place(&f, &[[5.0, 0.0], [0.0, -5.0]])
+        else {
+            panic!()
+        };
+        assert!((start - 0.0).abs() < 1e-12 && (end - PI / 2.0).abs() < 1e-12);
+        assert_eq!(diameter, 20.0);
+        // The reverse order goes the long way round.
+        let Placement::Arc { start, end, .. } = place(&f, &[[0.0, -5.0], [5.0, 0.0]]) else {
+            panic!()
+        };
+        assert!((end - start - 1.5 * PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_smallest_containing_structure_wins() {
+        use crate::estimate::Kind;
+        let mk = |footprint| Structure {
+            id: String::new(),
+            label: String::new(),
+            kind: Kind::Solid,
+            footprint,
+            height: 1.0,
+            wall_thickness: 1.0,
+            facades: vec![],
+            children: vec![],
+            provenance: Default::default(),
+        };
+        let big = mk(rect());
+        let small = mk(Footprint::Circle {
+            center: [100.0, 50.0],
+            radius: 5.0,
+        });
+        assert_eq!(structure_at(&[big.clone(), small], [101.0, 50.0]), Some(1));
+        assert_eq!(structure_at(&[big], [0.0, 0.0]), None);
+    }
+}

@@ -1,0 +1,170 @@
+//! The integrated estimate (estimate.json, §6.1.3–6.1.4): structures from the plan, each with a
+//! footprint in the plan's frame, a height, the façades mapped to it and its semantic
+//! hierarchy, and for every parameter where it came from.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// estimate.json.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// "m" with a drawing scale, else "px" (plan pixels).
+    pub units: String,
+    /// Output units per plan pixel.
+    pub scale: f64,
+    /// Output units per metre, used for the sizes only known in metres (wall walks, roofs,
+    /// slits): 1 with a scale, else derived from the plan (see `assumptions`).
+    pub units_per_metre: f64,
+    pub plan: PlanSource,
+    pub structures: Vec<Structure>,
+    /// What was assumed rather than measured.
+    pub assumptions: Vec<String>,
+}
+
+/// The plan drawing the structures come from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanSource {
+    pub image: String,
+    pub width: u32,
+    pub height: u32,
+    pub towers: usize,
+}
+
+/// One building part: a plan shape with its label, lifted to 3D.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Structure {
+    /// Symbol in the generated program, e.g. `tower2`.
+    pub id: String,
+    /// The plan label (§5.1.6) of the shape, the root of its hierarchy (§6.1.3).
+    pub label: String,
+    pub kind: Kind,
+    pub footprint: Footprint,
+    pub height: f64,
+    pub wall_thickness: f64,
+    pub facades: Vec<MappedFacade>,
+    /// The semantic hierarchy under the root (§6.1.3).
+    pub children: Vec<Element>,
+    /// Source of each parameter, by name (`footprint`, `height`, `wall_thickness`, …).
+    pub provenance: BTreeMap<String, Provenance>,
+}
+
+/// The §6.1.3 classes of architecture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// Four walls and an interior (rectangular towers, keeps, halls, rooms).
+    HollowRectangular,
+    /// A wall ring and an interior (round towers).
+    HollowCylindrical,
+    /// Wall faces and a fill (curtain walls).
+    Solid,
+}
+
+/// A footprint in the plan's frame (x, z) = plan pixel (x, y) × scale.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum Footprint {
+    /// `rotation`: angle of the `size[0]` side from the x axis, radians, measured in the plan
+    /// image (y down).
+    Rectangle {
+        center: [f64; 2],
+        size: [f64; 2],
+        rotation: f64,
+    },
+    Circle {
+        center: [f64; 2],
+        radius: f64,
+    },
+}
+
+/// A façade estimate mapped onto a structure, scaled into model units (§6.1.2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MappedFacade {
+    pub image: String,
+    /// Which wall: `north`, `south`, `east`, `west` (rectangle sides, the local −z, +z, +x,
+    /// −x faces of the box) or `arc`.
+    pub side: String,
+    /// For an arc: start and end angle (radians, counter-clockwise on the drawing, 0 = +x).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arc: Option<[f64; 2]>,
+    /// s = w_p / w_f (or d_p / w_f for a circle): model units per rectified façade pixel,
+    /// horizontally.
+    pub scale: f64,
+    /// s_yn = H̄ / (s H_n): the extra vertical factor that gives all façades of the structure
+    /// the same height (1 with one façade).
+    pub height_factor: f64,
+    /// Façade width and height in model units.
+    pub width: f64,
+    pub height: f64,
+    /// Bottom-up.
+    pub floors: Vec<FloorEstimate>,
+    pub windows: WindowColumns,
+    /// True when re-estimated jointly with the structure's other façades (§6.1.2).
+    pub joint: bool,
+    /// The façade's bounding box in the rectified photo [x0, y0, x1, y1].
+    pub bbox: [f64; 4],
+    /// Texture file of the rectified, cropped photo, if written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texture: Option<String>,
+}
+
+/// One floor of a mapped façade, model units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FloorEstimate {
+    pub height: f64,
+    pub windows: u32,
+    /// Window height and its distance above the floor's bottom (0 when no windows).
+    pub window_height: f64,
+    pub window_sill: f64,
+}
+
+/// The window columns shared by every floor, model units from the façade's left edge.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WindowColumns {
+    pub count: u32,
+    pub offset: f64,
+    pub width: f64,
+    pub gap: f64,
+}
+
+/// A node of the semantic hierarchy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Element {
+    pub name: String,
+    pub kind: String,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub children: Vec<Element>,
+}
+
+/// Where a value came from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Provenance {
+    /// The input image (plan or façade photo), or "default" for class defaults.
+    pub image: String,
+    /// The pipeline step, e.g. "§5.1.5 circle fit of plan face 4".
+    pub step: String,
+    /// The step's fit error where it has one (pixels of its image).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fit_error: Option<f64>,
+}
+
+impl Provenance {
+    pub fn new(image: &str, step: impl Into<String>, fit_error: Option<f64>) -> Provenance {
+        Provenance {
+            image: image.to_string(),
+            step: step.into(),
+            fit_error,
+        }
+    }
+}
+
+impl Element {
+    pub fn leaf(name: impl Into<String>, kind: &str) -> Element {
+        Element {
+            name: name.into(),
+            kind: kind.into(),
+            children: Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,377 @@
+//! `integrate`: a parsed plan drawing and façade estimates → one semantic 3D hierarchy → a VSG
+//! program (Sui 2011, chapter 6 and §7.2.2–7.2.3).
+//!
+//! # Brief overview
+//! - [`project::Project`] is PROJECT.toml: the plan, the façade photos with their training boxes,
+//!   the correspondences (§6.1.1).
+//! - [`photo::estimate_facade`] runs chapter 3 on one photo ([`photo::FacadeEstimate`]).
+//! - [`integrate`] maps each façade onto its plan structure ([`correspond`]), scales it
+//!   (s = w_p / w_f), re-estimates façades that share a structure jointly (§6.1.2), and builds
+//!   the [`estimate::Estimate`] (estimate.json) with the hierarchy of §6.1.3 and the provenance
+//!   of every parameter.
+//! - [`program::generate`] writes the VSG program (§7.2.2) that [`vsg::run_with`] turns into the
+//!   model; [`library::Library`] resolves the medieval library it imports.
+//! - [`synth`] draws a synthetic project (plan and perspective façade photos with known answers).
+//!
+//! ```
+//! use integrate::{Inputs, integrate, program, synth};
+//! let truth = synth::Castle::default();
+//! let plan = plan::parse(&image::DynamicImage::ImageLuma8(truth.plan()), &plan::Options::default()).unwrap();
+//! let estimate = integrate(&Inputs {
+//!     plan: &plan,
+//!     plan_image: "plan.png",
+//!     scale: Some(truth.metres_per_pixel),
+//!     facades: &[],
+//!     correspondences: &[],
+//! })
+//! .unwrap();
+//! assert_eq!(estimate.units, "m");
+//! assert!(estimate.structures.iter().filter(|s| s.label == "tower_room").count() >= 2);
+//! let src = program::generate(&estimate, &program::Options::default());
+//! let model = vsg::run_with("model.vsg", &src, &vsg::RunOptions::default(), &mut integrate::library::Library).unwrap();
+//! assert!(model.terminals().count() > 0);
+//! ```
+
+pub mod correspond;
+pub mod estimate;
+pub mod library;
+pub mod photo;
+pub mod program;
+pub mod project;
+pub mod structures;
+pub mod synth;
+
+use facade::classify::Class;
+use facade::model::FacadeParams;
+use facade::search::joint::{JointFacade, fit_floors_joint};
+use facade::search::{Gradients, Integral, SearchParams};
+use plan::ParsedPlan;
+
+use crate::correspond::{Placement, facade_at, place, structure_at};
+use crate::estimate::{
+    Element, Estimate, FloorEstimate, Kind, MappedFacade, PlanSource, Provenance, WindowColumns,
+};
+use crate::photo::FacadeEstimate;
+use crate::project::Correspondence;
+use crate::structures::{Frame, assumed_units_per_metre};
+
+/// Why integration failed; each names the PROJECT.toml entry at fault.
+#[derive(Debug, thiserror::Error)]
+pub enum IntegrateError {
+    #[error("{image}: {step}: {message}")]
+    Facade {
+        image: String,
+        step: String,
+        message: String,
+    },
+    #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
+    Correspondence {
+        index: usize,
+        facade: String,
+        message: String,
+    },
+}
+
+/// Everything integration needs, already estimated.
+pub struct Inputs<'a> {
+    pub plan: &'a ParsedPlan,
+    /// The plan's name in PROJECT.toml (for provenance).
+    pub plan_image: &'a str,
+    /// Metres per plan pixel.
+    pub scale: Option<f64>,
+    pub facades: &'a [FacadeEstimate],
+    pub correspondences: &'a [Correspondence],
+}
+
+/// One façade as mapped by a correspondence.
+struct Mapping {
+    photo: usize,
+    facade: usize,
+    placement: Placement,
+}
+
+/// Integrates the plan and façade estimates (§6.1.1–6.1.4).
+pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
+    let plan = inputs.plan;
+    let mut assumptions = Vec::new();
+    let (frame, units) = match inputs.scale {
+        Some(s) => (
+            Frame {
+                scale: s,
+                units_per_metre: 1.0,
+            },
+            "m",
+        ),
+        None => {
+            let (upm, why) = assumed_units_per_metre(plan);
+            assumptions.push(why);
+            (
+                Frame {
+                    scale: 1.0,
+                    units_per_metre: upm,
+                },
+                "px",
+            )
+        }
+    };
+    let mut structures = structures::from_plan(plan, inputs.plan_image, frame);
+    let mut mappings: Vec<Vec<Mapping>> = (0..structures.len()).map(|_| Vec::new()).collect();
+    for (i, c) in inputs.correspondences.iter().enumerate() {
+        let fail = |message: String| IntegrateError::Correspondence {
+            index: i + 1,
+            facade: c.facade.clone(),
+            message,
+        };
+        let photo = inputs
+            .facades
+            .iter()
+            .position(|f| f.name == c.facade)
+            .ok_or_else(|| fail("no estimate for this façade image".into()))?;
+        let est = &inputs.facades[photo];
+        let q = est
+            .to_rectified(c.facade_point)
+            .ok_or_else(|| fail("facade_point maps to infinity under the rectification".into()))?;
+        let facade = facade_at(&est.model, q).ok_or_else(|| {
+            let found: Vec<String> = est
+                .model
+                .facades
+                .iter()
+                .map(|f| format!("{:?}", f.bbox.map(|v| v.round())))
+                .collect();
+            fail(format!(
+                "facade_point {:?} (rectified {:?}) is not inside any façade found in the photo (found, rectified pixels: {})",
+                c.facade_point,
+                q.map(|v| v.round()),
+                if found.is_empty() { "none".into() } else { found.join(", ") }
+            ))
+        })?;
+        let points: Vec<[f64; 2]> = c
+            .plan_points
+            .iter()
+            .map(|p| [p[0] * frame.scale, p[1] * frame.scale])
+            .collect();
+        let target = structure_at(&structures, points[0]).ok_or_else(|| {
+            let [x, y] = c.plan_points[0];
+            let label = (x >= 0.0 && y >= 0.0 && x < f64::from(plan.width) && y < f64::from(plan.height))
+                .then(|| plan.label_at(x as u32, y as u32).name())
+                .unwrap_or("outside the drawing");
+            fail(format!(
+                "plan point [{x}, {y}] is not inside any plan shape with a circle or rectangle fit or a wall (label there: {label})"
+            ))
+        })?;
+        let placement = place(&structures[target].footprint, &points);
+        mappings[target].push(Mapping {
+            photo,
+            facade,
+            placement,
+        });
+    }
+    for (structure, maps) in structures.iter_mut().zip(&mappings) {
+        if maps.is_empty() {
+            continue;
+        }
+        let params = facade_params(inputs.facades, maps);
+        let widths: Vec<f64> = maps
+            .iter()
+            .map(|m| match m.placement {
+                Placement::Side { length, .. } => length,
+                Placement::Arc { diameter, .. } => diameter,
+            })
+            .collect();
+        let scales: Vec<f64> = params
+            .iter()
+            .zip(&widths)
+            .map(|(p, w_p)| w_p / (p.x_fr - p.x_fl).max(1.0))
+            .collect();
+        let heights: Vec<f64> = params
+            .iter()
+            .zip(&scales)
+            .map(|(p, s)| (p.y_fb - p.y_ft) * s)
+            .collect();
+        let mean_height = heights.iter().sum::<f64>() / heights.len() as f64;
+        let joint = maps.len() > 1;
+        let names: Vec<&str> = maps
+            .iter()
+            .map(|m| inputs.facades[m.photo].name.as_str())
+            .collect();
+        structure.height = mean_height;
+        structure.provenance.insert(
+            "height".into(),
+            Provenance::new(
+                &names.join(", "),
+                if joint {
+                    format!(
+                        "§6.1.2 mean of {} façade heights, each scaled by w_p / w_f",
+                        maps.len()
+                    )
+                } else {
+                    "§6.1.2 façade boundary height (§3.1.5) scaled by w_p / w_f".to_string()
+                },
+                None,
+            ),
+        );
+        for (k, m) in maps.iter().enumerate() {
+            let p = &params[k];
+            let s = scales[k];
+            let sy = mean_height / heights[k].max(1e-12);
+            let est = &inputs.facades[m.photo];
+            let (side, arc) = match m.placement {
+                Placement::Side { side, .. } => (side.to_string(), None),
+                Placement::Arc { start, end, .. } => ("arc".to_string(), Some([start, end])),
+            };
+            let mapped = MappedFacade {
+                image: est.name.clone(),
+                side: side.clone(),
+                arc,
+                scale: s,
+                height_factor: sy,
+                width: widths[k],
+                height: mean_height,
+                floors: floors_of(p, s * sy),
+                windows: WindowColumns {
+                    count: p.n_w,
+                    offset: p.w_off * s,
+                    width: p.w_w * s,
+                    gap: p.w_gap * s,
+                },
+                joint,
+                bbox: [p.x_fl, p.y_ft, p.x_fr, p.y_fb],
+                texture: None,
+            };
+            replace_wall(
+                structure.kind,
+                &structure.id,
+                &mut structure.children,
+                &mapped,
+                k,
+            );
+            structure.provenance.insert(
+                format!("facade.{}.{side}", est.name),
+                Provenance::new(
+                    &est.name,
+                    format!(
+                        "§3.1.7 façade {} of the rectified photo{}, scaled by s = {s:.4} (w_p / w_f, §6.1.2)",
+                        m.facade,
+                        if joint { ", floors re-estimated jointly (§6.1.2)" } else { "" }
+                    ),
+                    None,
+                ),
+            );
+            structure.facades.push(mapped);
+        }
+    }
+    Ok(Estimate {
+        units: units.into(),
+        scale: frame.scale,
+        units_per_metre: frame.units_per_metre,
+        plan: PlanSource {
+            image: inputs.plan_image.to_string(),
+            width: plan.width,
+            height: plan.height,
+            towers: plan.towers,
+        },
+        structures,
+        assumptions,
+    })
+}
+
+/// The façades' parameters; several on one structure are re-estimated jointly (§6.1.2).
+fn facade_params(photos: &[FacadeEstimate], maps: &[Mapping]) -> Vec<FacadeParams> {
+    let single: Vec<FacadeParams> = maps
+        .iter()
+        .map(|m| photos[m.photo].model.facades[m.facade].params)
+        .collect();
+    if maps.len() < 2 {
+        return single;
+    }
+    let prepared: Option<Vec<(Integral, Gradients, [usize; 4])>> = maps
+        .iter()
+        .map(|m| {
+            let est = &photos[m.photo];
+            let ll = &est.log_likelihoods;
+            let (win, wall) = (ll.get(Class::Window)?, ll.get(Class::Wall)?);
+            let d: Vec<f64> = win
+                .iter()
+                .zip(wall)
+                .map(|(a, b)| f64::from(a - b))
+                .collect();
+            let b = est.model.facades[m.facade].bbox;
+            let rect = [
+                b[0].max(0.0) as usize,
+                b[1].max(0.0) as usize,
+                (b[2].max(0.0) as usize).min(ll.width),
+                (b[3].max(0.0) as usize).min(ll.height),
+            ];
+            (rect[2] > rect[0] && rect[3] > rect[1]).then(|| {
+                (
+                    Integral::new(&d, ll.width, ll.height),
+                    Gradients::new(&est.rectified),
+                    rect,
+                )
+            })
+        })
+        .collect();
+    let Some(prepared) = prepared else {
+        return single;
+    };
+    let joint: Vec<JointFacade> = prepared
+        .iter()
+        .map(|(d, g, rect)| JointFacade {
+            rect: *rect,
+            window_minus_wall: d,
+            gradients: g,
+        })
+        .collect();
+    fit_floors_joint(&joint, &SearchParams::default())
+}
+
+/// Floors bottom-up in model units (`k` model units per façade pixel vertically).
+fn floors_of(p: &FacadeParams, k: f64) -> Vec<FloorEstimate> {
+    p.floor_bands()
+        .into_iter()
+        .map(|(top, bottom, wh, wg)| {
+            let has = wh > 0.0 && p.n_w > 0;
+            FloorEstimate {
+                height: (bottom - top) * k,
+                windows: if has { p.n_w } else { 0 },
+                window_height: if has { wh * k } else { 0.0 },
+                window_sill: if has { wg * k } else { 0.0 },
+            }
+        })
+        .collect()
+}
+
+/// §6.1.3 / figure 6.3: the wall a façade is mapped to is replaced by the façade's hierarchy.
+fn replace_wall(kind: Kind, id: &str, children: &mut Vec<Element>, f: &MappedFacade, k: usize) {
+    let wall_name = match kind {
+        Kind::HollowRectangular => format!("{id}Wall_{}", f.side),
+        Kind::HollowCylindrical => format!("{id}Wall"),
+        Kind::Solid => format!("{id}Face_field"),
+    };
+    let facade = Element {
+        name: format!("{id}Facade{}", k + 1),
+        kind: "facade".into(),
+        children: f
+            .floors
+            .iter()
+            .enumerate()
+            .map(|(i, fl)| Element {
+                name: format!("{id}Facade{}Floor{}", k + 1, i + 1),
+                kind: "floor".into(),
+                children: (0..fl.windows)
+                    .map(|j| {
+                        Element::leaf(
+                            format!("{id}Facade{}Floor{}Window{}", k + 1, i + 1, j + 1),
+                            "window",
+                        )
+                    })
+                    .collect(),
+            })
+            .collect(),
+    };
+    match children.iter_mut().find(|c| c.name == wall_name) {
+        Some(slot) => *slot = facade,
+        // A further façade on a round tower's single wall: the façades stand side by side.
+        None => children.push(facade),
+    }
+}

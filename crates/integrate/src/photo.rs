@@ -1,0 +1,135 @@
+//! One façade photo through chapter 3: rectification (§3.1.1, automatic or from the user's
+//! segments), the pixel classifier trained from the user's boxes (§3.1.2–3.1.4) and the façade
+//! search (§3.1.5–3.1.7). Boxes and points are given in the photo's pixels and mapped through
+//! the rectifying homography, so a project stays valid if rectification is re-run.
+
+use facade::classify::{ClassifyParams, LogLikelihoods, Training, classify};
+use facade::model::FacadeModel;
+use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
+use facade::search::{SearchParams, parse};
+use image::RgbImage;
+use nalgebra::Matrix3;
+
+use crate::IntegrateError;
+
+/// A façade photo with what the user gave for it.
+pub struct FacadePhoto<'a> {
+    /// The name in PROJECT.toml.
+    pub name: &'a str,
+    pub image: &'a RgbImage,
+    /// Boxes in the photo's pixels.
+    pub training: &'a Training,
+    pub lines: Option<&'a ManualLines>,
+    /// The photo is already rectified.
+    pub rectified: bool,
+    pub seed: u64,
+}
+
+/// The chapter 3 estimate of one photo.
+pub struct FacadeEstimate {
+    pub name: String,
+    /// Photo pixels → rectified pixels.
+    pub homography: Matrix3<f64>,
+    pub rectification: Option<Rectification>,
+    pub rectified: RgbImage,
+    pub training: Training,
+    pub log_likelihoods: LogLikelihoods,
+    pub model: FacadeModel,
+}
+
+impl FacadeEstimate {
+    /// A photo point in rectified pixels.
+    pub fn to_rectified(&self, p: [f64; 2]) -> Option<[f64; 2]> {
+        facade::rectify::apply(&self.homography, p[0], p[1]).map(|(x, y)| [x, y])
+    }
+}
+
+/// Runs §3.1.1–3.1.7 on one photo.
+pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateError> {
+    let err = |step: &str, e: facade::FacadeError| IntegrateError::Facade {
+        image: photo.name.to_string(),
+        step: step.to_string(),
+        message: e.to_string(),
+    };
+    let (w, h) = photo.image.dimensions();
+    let rectification = if photo.rectified {
+        None
+    } else {
+        let params = RectifyParams::default();
+        Some(
+            match photo.lines {
+                Some(lines) => rectify_with_lines(w, h, lines, &params),
+                None => rectify(photo.image, &params),
+            }
+            .map_err(|e| err("rectification (§3.1.1)", e))?,
+        )
+    };
+    let (homography, rectified) = match &rectification {
+        Some(r) => (
+            r.h,
+            r.warp(photo.image)
+                .map_err(|e| err("rectification (§3.1.1)", e))?,
+        ),
+        None => (Matrix3::identity(), photo.image.clone()),
+    };
+    let training = map_training(photo.training, &homography);
+    let mut params = ClassifyParams::default();
+    params.features.seed = photo.seed;
+    let log_likelihoods = classify(&rectified, &training, &params)
+        .map_err(|e| err("pixel classes (§3.1.2–3.1.4)", e))?;
+    let model = parse(&rectified, &log_likelihoods, &SearchParams::default())
+        .map_err(|e| err("façade search (§3.1.7)", e))?;
+    Ok(FacadeEstimate {
+        name: photo.name.to_string(),
+        homography,
+        rectification,
+        rectified,
+        training,
+        log_likelihoods,
+        model,
+    })
+}
+
+/// Each box mapped through `h` and shrunk to the axis-aligned box inside the mapped
+/// quadrilateral (so no pixel of another class creeps in).
+pub fn map_training(t: &Training, h: &Matrix3<f64>) -> Training {
+    let classes = t
+        .classes
+        .iter()
+        .map(|(name, boxes)| {
+            let mapped = boxes.iter().map(|b| map_box(b, h).unwrap_or(*b)).collect();
+            (name.clone(), mapped)
+        })
+        .collect();
+    Training { classes }
+}
+
+fn map_box(b: &[f64; 4], h: &Matrix3<f64>) -> Option<[f64; 4]> {
+    let (x0, x1) = (b[0].min(b[2]), b[0].max(b[2]));
+    let (y0, y1) = (b[1].min(b[3]), b[1].max(b[3]));
+    let p = |x: f64, y: f64| facade::rectify::apply(h, x, y);
+    let (tl, tr, bl, br) = (p(x0, y0)?, p(x1, y0)?, p(x0, y1)?, p(x1, y1)?);
+    let left = tl.0.max(bl.0);
+    let right = tr.0.min(br.0);
+    let top = tl.1.max(tr.1);
+    let bottom = bl.1.min(br.1);
+    (right > left && bottom > top).then_some([left, top, right, bottom])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn boxes_shrink_inside_the_mapped_quadrilateral() {
+        // A shear x' = x + 0.1 y: the box [10, 10, 20, 20] becomes a parallelogram whose
+        // inscribed box spans x 12..21.
+        let h = Matrix3::new(1.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        let b = map_box(&[10.0, 10.0, 20.0, 20.0], &h).unwrap();
+        assert_eq!(b, [12.0, 10.0, 21.0, 20.0]);
+        assert_eq!(
+            map_box(&[1.0, 2.0, 3.0, 4.0], &Matrix3::identity()),
+            Some([1.0, 2.0, 3.0, 4.0])
+        );
+    }
+}

@@ -1,0 +1,253 @@
+//! PROJECT.toml (§6.1.1): the plan drawing, the façade photos with their training boxes and
+//! optional rectification lines, and the user's correspondences between façades and plan
+//! shapes. Parsing is pure (text in, typed project out); errors name the entry at fault.
+
+use facade::classify::Training;
+use serde::{Deserialize, Serialize};
+
+/// A whole reconstruction project; paths are relative to the PROJECT.toml file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Project {
+    /// The plan drawing.
+    pub plan: String,
+    /// Metres per plan pixel; the model comes out in metres when given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
+    pub facades: Vec<FacadeEntry>,
+    #[serde(
+        default,
+        rename = "correspondence",
+        skip_serializing_if = "Vec::is_empty"
+    )]
+    pub correspondences: Vec<Correspondence>,
+    /// Sample regions cut from the photos as random per-shape textures (§7.2.2, figure 7.6).
+    #[serde(default, rename = "texture", skip_serializing_if = "Vec::is_empty")]
+    pub textures: Vec<TextureSamples>,
+}
+
+/// One façade photo.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FacadeEntry {
+    pub image: String,
+    /// A TRAINING.json file, or the boxes inline (`training = { classes = { … } }`).
+    pub training: TrainingSource,
+    /// Rectification segments (the LINES.json contract) replacing the automatic ones.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lines: Option<String>,
+    /// The photo is already a rectified elevation: skip §3.1.1.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rectified: bool,
+}
+
+/// Where a façade's training boxes come from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum TrainingSource {
+    File(String),
+    Inline(Training),
+}
+
+/// §6.1.1: a point inside a façade of a photo and one point inside a plan shape (two, start
+/// and end counter-clockwise, for an arc of a circle).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Correspondence {
+    pub facade: String,
+    pub facade_point: [f64; 2],
+    pub plan_points: Vec<[f64; 2]>,
+}
+
+/// Texture samples of one semantic class: boxes [x0, y0, x1, y1] in a photo.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureSamples {
+    /// `wall` (walls without a photo of their own) or `roof`.
+    pub class: String,
+    pub image: String,
+    pub boxes: Vec<[f64; 4]>,
+}
+
+/// A project that cannot be used, with the entry at fault.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ProjectError {
+    #[error("{line}:{column}: {message}")]
+    Syntax {
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    #[error("{0}")]
+    Invalid(String),
+}
+
+impl Project {
+    /// Parses and checks a PROJECT.toml text.
+    pub fn from_toml(text: &str) -> Result<Project, ProjectError> {
+        let project: Project = toml::from_str(text).map_err(|e| {
+            let (line, column) = e
+                .span()
+                .map(|s| line_column(text, s.start))
+                .unwrap_or((1, 1));
+            ProjectError::Syntax {
+                line,
+                column,
+                message: e.message().trim().to_string(),
+            }
+        })?;
+        project.check()?;
+        Ok(project)
+    }
+
+    /// The project as TOML text (what `serve` saves).
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).unwrap_or_default()
+    }
+
+    fn check(&self) -> Result<(), ProjectError> {
+        let bad = |m: String| Err(ProjectError::Invalid(m));
+        if self.plan.trim().is_empty() {
+            return bad("plan: the plan drawing's file name is empty".into());
+        }
+        if let Some(s) = self.scale
+            && !(s.is_finite() && s > 0.0)
+        {
+            return bad(format!(
+                "scale = {s}: metres per plan pixel must be a positive number"
+            ));
+        }
+        for (i, f) in self.facades.iter().enumerate() {
+            if self.facades[..i].iter().any(|g| g.image == f.image) {
+                return bad(format!(
+                    "[[facade]] #{} (image = \"{}\"): this image is listed twice",
+                    i + 1,
+                    f.image
+                ));
+            }
+        }
+        for (i, c) in self.correspondences.iter().enumerate() {
+            let at = format!("[[correspondence]] #{} (facade = \"{}\")", i + 1, c.facade);
+            if !self.facades.iter().any(|f| f.image == c.facade) {
+                return bad(format!("{at}: no [[facade]] entry has this image"));
+            }
+            if !(1..=2).contains(&c.plan_points.len()) {
+                return bad(format!(
+                    "{at}: plan_points takes one point (two, start and end counter-clockwise, for an arc of a circle); found {}",
+                    c.plan_points.len()
+                ));
+            }
+            let finite = |p: &[f64; 2]| p.iter().all(|v| v.is_finite());
+            if !finite(&c.facade_point) || !c.plan_points.iter().all(finite) {
+                return bad(format!("{at}: points must be finite pixel coordinates"));
+            }
+        }
+        for (i, f) in self.facades.iter().enumerate() {
+            if !self.correspondences.iter().any(|c| c.facade == f.image) {
+                return bad(format!(
+                    "[[facade]] #{} (image = \"{}\"): no [[correspondence]] maps this façade to a plan shape",
+                    i + 1,
+                    f.image
+                ));
+            }
+        }
+        for (i, t) in self.textures.iter().enumerate() {
+            if !matches!(t.class.as_str(), "wall" | "roof") {
+                return bad(format!(
+                    "[[texture]] #{}: class \"{}\" is not one of wall, roof",
+                    i + 1,
+                    t.class
+                ));
+            }
+            if t.boxes.is_empty() {
+                return bad(format!(
+                    "[[texture]] #{} (image = \"{}\"): no boxes",
+                    i + 1,
+                    t.image
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+plan = "plan.png"
+scale = 0.05
+seed = 7
+
+[[facade]]
+image = "keep_south.jpg"
+training = "keep_south.training.json"
+
+[[facade]]
+image = "keep_east.jpg"
+training = { classes = { window = [[10, 10, 20, 20]], wall = [[0, 0, 5, 5]] } }
+rectified = true
+
+[[correspondence]]
+facade = "keep_south.jpg"
+facade_point = [412, 300]
+plan_points = [[640, 820]]
+
+[[correspondence]]
+facade = "keep_east.jpg"
+facade_point = [100, 100]
+plan_points = [[10, 10], [20, 20]]
+"#;
+
+    #[test]
+    fn the_contract_example_parses() {
+        let p = Project::from_toml(GOOD).unwrap();
+        assert_eq!(p.plan, "plan.png");
+        assert_eq!(p.scale, Some(0.05));
+        assert_eq!(p.facades.len(), 2);
+        assert!(matches!(p.facades[0].training, TrainingSource::File(_)));
+        assert!(matches!(p.facades[1].training, TrainingSource::Inline(_)));
+        assert!(p.facades[1].rectified);
+        assert_eq!(p.correspondences[1].plan_points.len(), 2);
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p, "round trip");
+    }
+
+    #[test]
+    fn syntax_errors_have_line_and_column() {
+        let e = Project::from_toml("plan = \"a.png\"\nscale = [oops\n").unwrap_err();
+        let ProjectError::Syntax { line, .. } = e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(line, 2);
+        let e = Project::from_toml("plan = \"a.png\"\nscael = 1\n").unwrap_err();
+        assert!(e.to_string().starts_with("2:1:"), "{e}");
+    }
+
+    #[test]
+    fn entries_at_fault_are_named() {
+        let missing = GOOD.replace("facade = \"keep_east.jpg\"", "facade = \"nope.jpg\"");
+        let e = Project::from_toml(&missing).unwrap_err().to_string();
+        assert!(
+            e.contains("[[correspondence]] #2") && e.contains("nope.jpg"),
+            "{e}"
+        );
+        let three = GOOD.replace("[[10, 10], [20, 20]]", "[[1, 1], [2, 2], [3, 3]]");
+        let e = Project::from_toml(&three).unwrap_err().to_string();
+        assert!(e.contains("plan_points"), "{e}");
+        let e = Project::from_toml(&GOOD.replace("0.05", "-1"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("scale"), "{e}");
+    }
+}
