@@ -33,6 +33,11 @@ pub enum Command {
     Rectify(crate::rectify_cmd::RectifyArgs),
     /// Parse a rectified façade into façades, floors and windows (dissertation §3.1.2-3.1.7).
     Facade(crate::facade_cmd::FacadeArgs),
+    /// Plan drawing + façade photos (PROJECT.toml) → integrated estimate → VSG program → model,
+    /// with every step's overlay in an HTML report (dissertation ch. 6, §7.2.2–7.2.3).
+    Reconstruct(crate::reconstruct_cmd::ReconstructArgs),
+    /// Reconstruct the bundled example castle and compare the estimate with its known truth.
+    Demo(crate::demo_cmd::DemoArgs),
 }
 
 #[derive(Debug, Subcommand)]

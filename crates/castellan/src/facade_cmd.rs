@@ -42,15 +42,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         outputs.add(lp, png(&g, lp)?);
     }
     if let Some(op) = &args.overlay {
-        let mut o = img.clone();
-        let colours = [Rgb([255u8, 40, 40]), Rgb([255, 0, 255]), Rgb([0, 220, 0])];
-        for (p, l) in o.pixels_mut().zip(&labels) {
-            let c = colours[*l as usize];
-            for k in 0..3 {
-                p[k] = ((p[k] as u16 + c[k] as u16) / 2) as u8;
-            }
-        }
-        outputs.add(op, png(&o, op)?);
+        outputs.add(op, png(&label_overlay(&img, &labels), op)?);
     }
     outputs.commit()?;
     let windows: usize = model
@@ -66,6 +58,19 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// The image tinted by label: background red, wall magenta, window green.
+pub fn label_overlay(img: &image::RgbImage, labels: &[u8]) -> image::RgbImage {
+    let mut o = img.clone();
+    let colours = [Rgb([255u8, 40, 40]), Rgb([255, 0, 255]), Rgb([0, 220, 0])];
+    for (p, l) in o.pixels_mut().zip(labels) {
+        let c = colours[usize::from(*l).min(2)];
+        for k in 0..3 {
+            p[k] = ((u16::from(p[k]) + u16::from(c[k])) / 2) as u8;
+        }
+    }
+    o
 }
 
 /// `castellan facade` flags.

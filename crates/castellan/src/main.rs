@@ -3,11 +3,14 @@
 
 mod cli;
 mod corners_cmd;
+mod demo_cmd;
 mod facade_cmd;
 mod images;
 mod output;
 mod plan_cmd;
+mod reconstruct_cmd;
 mod rectify_cmd;
+mod report;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -23,6 +26,8 @@ fn main() -> ExitCode {
         cli::Command::Plan(args) => plan_cmd::run(&args),
         cli::Command::Rectify(args) => rectify_cmd::run(&args),
         cli::Command::Facade(args) => facade_cmd::run(&args),
+        cli::Command::Reconstruct(args) => reconstruct_cmd::run(&args),
+        cli::Command::Demo(args) => demo_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -190,10 +190,10 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
                 Provenance::new(
                     image,
                     format!(
-                        "§5.1.4 skeleton chain of plan edge {ei} ({}), Douglas–Peucker segment",
+                        "§5.1.4 skeleton chain of plan edge {ei} ({}), a segment of its Douglas–Peucker simplification (within 1.5 px)",
                         edge.label.name()
                     ),
-                    edge.fit.as_ref().map(Fit::error),
+                    None,
                 ),
             );
             provenance.insert(

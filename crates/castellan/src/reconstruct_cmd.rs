@@ -1,0 +1,317 @@
+//! `castellan reconstruct PROJECT.toml -o OUTDIR` (issue 9, dissertation ch. 6 and §7.2.2–7.2.3):
+//! plan drawing and façade photos → estimates → integrated hierarchy → VSG program → model,
+//! with the overlays of every step and an HTML report. Everything is written at the end, each
+//! file atomically, so a failed run leaves OUTDIR as it was.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow};
+use clap::Args;
+use image::GrayImage;
+use integrate::photo::{FacadeEstimate, FacadePhoto, estimate_facade};
+use integrate::project::{Project, TrainingSource};
+use rayon::prelude::*;
+
+use crate::images::{png, read_image};
+use crate::output::Outputs;
+
+/// `castellan reconstruct` flags.
+#[derive(Debug, Args)]
+pub struct ReconstructArgs {
+    /// The project file (PROJECT.toml contract).
+    pub project: PathBuf,
+    /// Output folder: model.vsg, model.glb, model.obj, stats.json, estimate.json, index.html.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Seed for the classifier's sampling and the program's randomness (overrides the project's).
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+/// What a reconstruction produced, for the commands' closing lines.
+pub struct Summary {
+    pub estimate: integrate::estimate::Estimate,
+    pub stages: Vec<(String, f64)>,
+    pub terminals: usize,
+    pub report: PathBuf,
+    pub model: PathBuf,
+}
+
+pub fn run(args: &ReconstructArgs) -> Result<()> {
+    let s = reconstruct(&args.project, &args.output, args.seed)?;
+    print_summary(&s);
+    Ok(())
+}
+
+pub fn print_summary(s: &Summary) {
+    let times: Vec<String> = s
+        .stages
+        .iter()
+        .map(|(k, v)| format!("{k} {v:.0} ms"))
+        .collect();
+    eprintln!(
+        "{} structures, {} façade(s) mapped, {} terminals; {}",
+        s.estimate.structures.len(),
+        s.estimate
+            .structures
+            .iter()
+            .map(|x| x.facades.len())
+            .sum::<usize>(),
+        s.terminals,
+        times.join(", ")
+    );
+    eprintln!(
+        "report: {}\nmodel:  {}",
+        s.report.display(),
+        s.model.display()
+    );
+}
+
+fn progress(steps: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(steps);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar
+}
+
+/// Runs the whole pipeline and writes OUTDIR.
+pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Result<Summary> {
+    let name = project_path.display().to_string();
+    let text =
+        std::fs::read_to_string(project_path).with_context(|| format!("cannot read {name}"))?;
+    let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
+    let dir = project_path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let seed = seed.or(project.seed).unwrap_or(0);
+    let bar = progress(4 + project.facades.len() as u64);
+    let mut stages: Vec<(String, f64)> = Vec::new();
+    let mut outputs = Outputs::default();
+
+    bar.set_message("plan drawing (ch. 5)");
+    let t = Instant::now();
+    let plan_path = dir.join(&project.plan);
+    let plan_image =
+        read_image(&plan_path).with_context(|| format!("{name}: plan = \"{}\"", project.plan))?;
+    let parsed = plan::parse(&plan_image, &plan::Options::default())
+        .map_err(|e| anyhow!("{name}: plan = \"{}\": {e}", project.plan))?;
+    stages.push(("plan".into(), ms(t)));
+    outputs.add(
+        &outdir.join("overlays/plan_labels.png"),
+        png(
+            &plan::output::overlay(&parsed, &plan_image.to_luma8()),
+            Path::new("plan overlay"),
+        )?,
+    );
+    outputs.add(
+        &outdir.join("plan.svg"),
+        plan::output::svg(&parsed).into_bytes(),
+    );
+    bar.inc(1);
+
+    bar.set_message("façade photos (ch. 3)");
+    let t = Instant::now();
+    let inputs: Vec<_> = project
+        .facades
+        .iter()
+        .enumerate()
+        .map(|(i, f)| -> Result<_> {
+            let at = format!("{name}: [[facade]] #{} (image = \"{}\")", i + 1, f.image);
+            let image = read_image(&dir.join(&f.image)).with_context(|| at.clone())?;
+            let training = match &f.training {
+                TrainingSource::Inline(t) => t.clone(),
+                TrainingSource::File(p) => read_json(&dir.join(p)).with_context(|| at.clone())?,
+            };
+            let lines = match &f.lines {
+                Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.clone())?),
+                None => None,
+            };
+            Ok((image.to_rgb8(), training, lines))
+        })
+        .collect::<Result<_>>()?;
+    let estimates: Vec<FacadeEstimate> = project
+        .facades
+        .par_iter()
+        .zip(&inputs)
+        .map(|(f, (image, training, lines))| {
+            let e = estimate_facade(&FacadePhoto {
+                name: &f.image,
+                image,
+                training,
+                lines: lines.as_ref(),
+                rectified: f.rectified,
+                seed,
+            })
+            .map_err(|e| anyhow!("{name}: [[facade]] image = \"{}\": {e}", f.image));
+            bar.inc(1);
+            e
+        })
+        .collect::<Result<_>>()?;
+    stages.push(("facades".into(), ms(t)));
+    for (e, (photo, _, _)) in estimates.iter().zip(&inputs) {
+        let stem = stem(&e.name);
+        if let Some(r) = &e.rectification {
+            outputs.add(
+                &outdir.join(format!("overlays/{stem}_lines.png")),
+                png(
+                    &facade::rectify::draw_overlay(photo, r),
+                    Path::new("lines overlay"),
+                )?,
+            );
+        }
+        let labels = e.model.labels();
+        outputs.add(
+            &outdir.join(format!("overlays/{stem}_facade.png")),
+            png(
+                &crate::facade_cmd::label_overlay(&e.rectified, &labels),
+                Path::new("façade overlay"),
+            )?,
+        );
+        let lab = GrayImage::from_raw(e.model.width, e.model.height, labels)
+            .ok_or_else(|| anyhow!("label image size"))?;
+        outputs.add(
+            &outdir.join(format!("overlays/{stem}_labels.png")),
+            png(&lab, Path::new("labels"))?,
+        );
+    }
+
+    bar.set_message("integration (ch. 6)");
+    let t = Instant::now();
+    let estimate = integrate::integrate(&integrate::Inputs {
+        plan: &parsed,
+        plan_image: &project.plan,
+        scale: project.scale,
+        facades: &estimates,
+        correspondences: &project.correspondences,
+    })
+    .map_err(|e| anyhow!("{name}: {e}"))?;
+    let program = integrate::program::generate(&estimate, &integrate::program::Options::default());
+    stages.push(("integrate".into(), ms(t)));
+    bar.inc(1);
+
+    bar.set_message("VSG production (ch. 7)");
+    let t = Instant::now();
+    let options = vsg::RunOptions {
+        seed,
+        ..Default::default()
+    };
+    let model = vsg::run_with(
+        "model.vsg",
+        &program,
+        &options,
+        &mut integrate::library::Library,
+    )
+    .map_err(|e| {
+        anyhow!(
+            "internal error: the generated program does not run: {}",
+            e.render("model.vsg", &program).trim_end()
+        )
+    })?;
+    stages.push(("vsg".into(), ms(t)));
+    bar.inc(1);
+
+    bar.set_message("export");
+    let t = Instant::now();
+    let export = vsg::export::ExportOptions::default();
+    let glb = vsg::export::to_glb(&model, &export).context("cannot export model.glb")?;
+    let (obj, mtl) =
+        vsg::export::to_obj(&model, &export, "model.mtl").context("cannot export model.obj")?;
+    let picture = vsg::render::render(
+        &model,
+        &vsg::render::RenderOptions {
+            width: 960,
+            height: 640,
+            tessellation: export.tessellation,
+            ..Default::default()
+        },
+    );
+    let preview = image::RgbImage::from_raw(picture.width, picture.height, picture.rgb)
+        .ok_or_else(|| anyhow!("preview size"))?;
+    stages.push(("export".into(), ms(t)));
+    bar.inc(1);
+    bar.finish_and_clear();
+
+    let stats = vsg::stats::Stats::of(&model, &export.tessellation);
+    let mut stats_json = serde_json::to_value(&stats)?;
+    stats_json["stages_ms"] = serde_json::Value::Object(
+        stages
+            .iter()
+            .map(|(k, v)| (k.clone(), serde_json::json!((v * 10.0).round() / 10.0)))
+            .collect(),
+    );
+    outputs.add(&outdir.join("model.vsg"), program.clone().into_bytes());
+    for (file, text) in integrate::library::FILES {
+        outputs.add(&outdir.join(file), text.as_bytes().to_vec());
+    }
+    outputs.add(&outdir.join("model.glb"), glb);
+    outputs.add(&outdir.join("model.obj"), obj.into_bytes());
+    outputs.add(&outdir.join("model.mtl"), mtl.into_bytes());
+    outputs.add(
+        &outdir.join("preview.png"),
+        png(&preview, Path::new("preview"))?,
+    );
+    outputs.add(
+        &outdir.join("stats.json"),
+        serde_json::to_vec_pretty(&stats_json)?,
+    );
+    outputs.add(
+        &outdir.join("estimate.json"),
+        serde_json::to_vec_pretty(&estimate)?,
+    );
+    let report = crate::report::html(&project, &estimate, &stats_json, &stages);
+    outputs.add(&outdir.join("index.html"), report.into_bytes());
+    outputs.commit()?;
+    Ok(Summary {
+        estimate,
+        stages,
+        terminals: stats.terminals,
+        report: outdir.join("index.html"),
+        model: outdir.join("model.glb"),
+    })
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// A file name without folders and extension, for output names.
+pub fn stem(name: &str) -> String {
+    Path::new(name)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| name.to_string())
+}
+
+fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    serde_json::from_str(&text)
+        .map_err(|e| anyhow!("{}:{}:{}: {e}", path.display(), e.line(), e.column()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: ReconstructArgs,
+    }
+
+    #[test]
+    fn reconstruct_needs_a_project_and_an_output_folder() {
+        assert!(Cli::try_parse_from(["x", "p.toml"]).is_err());
+        let c = Cli::try_parse_from(["x", "p.toml", "-o", "out", "--seed", "3"]).unwrap();
+        assert_eq!(c.args.output, PathBuf::from("out"));
+        assert_eq!(c.args.seed, Some(3));
+    }
+
+    #[test]
+    fn stems_drop_folders_and_extensions() {
+        assert_eq!(stem("photos/keep south.jpg"), "keep south");
+    }
+}

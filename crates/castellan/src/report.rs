@@ -1,0 +1,146 @@
+//! The reconstruction report (index.html): the overlays of every step, the integrated
+//! structures with the provenance of their parameters, stage times and the model's figures.
+//! A static page that opens from disk with no network.
+
+use std::fmt::Write;
+
+use integrate::estimate::{Estimate, Footprint};
+use integrate::project::Project;
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The page.
+pub fn html(
+    project: &Project,
+    e: &Estimate,
+    stats: &serde_json::Value,
+    stages: &[(String, f64)],
+) -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>castellan reconstruction</title>\n<style>body{{font-family:sans-serif;margin:2em;max-width:1200px}}img{{max-width:100%;border:1px solid #ccc}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}figure{{display:inline-block;margin:.5em;max-width:45%;vertical-align:top}}code{{background:#f4f4f4}}</style></head><body>\n<h1>castellan reconstruction</h1>\n"
+    );
+    let _ = writeln!(
+        h,
+        "<p>Plan <code>{}</code>, {} façade photo(s); units: {} ({} per plan pixel). Outputs: <a href=\"model.glb\">model.glb</a> (Blender, three.js, any glTF viewer), <a href=\"model.obj\">model.obj</a> (MeshLab), <a href=\"model.vsg\">model.vsg</a> (the generated program: <code>castellan vsg run model.vsg -o model.glb</code>), <a href=\"estimate.json\">estimate.json</a>, <a href=\"stats.json\">stats.json</a>, <a href=\"plan.svg\">plan.svg</a>.</p>",
+        esc(&project.plan),
+        project.facades.len(),
+        esc(&e.units),
+        e.scale
+    );
+    for a in &e.assumptions {
+        let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
+    }
+    let _ = writeln!(
+        h,
+        "<h2>Model</h2><img src=\"preview.png\" alt=\"rendered model\">"
+    );
+    let _ = writeln!(
+        h,
+        "<p>{} terminals ({} visible, {} void), {} triangles, total volume {:.1}.</p>",
+        stats["terminals"],
+        stats["visible_terminals"],
+        stats["void_terminals"],
+        stats["triangles"],
+        stats["volume"]["total"].as_f64().unwrap_or(0.0)
+    );
+    let _ = writeln!(
+        h,
+        "<h2>Steps</h2><figure><img src=\"overlays/plan_labels.png\"><figcaption>Plan labels (ch. 5)</figcaption></figure>"
+    );
+    for f in &project.facades {
+        let stem = crate::reconstruct_cmd::stem(&f.image);
+        if !f.rectified {
+            let _ = writeln!(
+                h,
+                "<figure><img src=\"overlays/{0}_lines.png\"><figcaption>{1}: line families and vanishing points (§3.1.1)</figcaption></figure>",
+                esc(&stem),
+                esc(&f.image)
+            );
+        }
+        let _ = writeln!(
+            h,
+            "<figure><img src=\"overlays/{0}_facade.png\"><figcaption>{1}: rectified façade, wall/window/background (§3.1.7)</figcaption></figure>",
+            esc(&stem),
+            esc(&f.image)
+        );
+    }
+    let _ = writeln!(
+        h,
+        "<h2>Structures (§6.1.3)</h2><table><tr><th>id</th><th>label</th><th>footprint</th><th>height</th><th>façades</th><th>provenance</th></tr>"
+    );
+    for s in &e.structures {
+        let fp = match &s.footprint {
+            Footprint::Rectangle {
+                center,
+                size,
+                rotation,
+            } => format!(
+                "rectangle at ({:.1}, {:.1}), {:.1} × {:.1}, {:.1}°",
+                center[0],
+                center[1],
+                size[0],
+                size[1],
+                rotation.to_degrees()
+            ),
+            Footprint::Circle { center, radius } => {
+                format!(
+                    "circle at ({:.1}, {:.1}), r {:.1}",
+                    center[0], center[1], radius
+                )
+            }
+        };
+        let facades: Vec<String> = s
+            .facades
+            .iter()
+            .map(|f| {
+                format!(
+                    "{} → {}: {} floors, {} windows/floor, s = {:.4}{}",
+                    esc(&f.image),
+                    f.side,
+                    f.floors.len(),
+                    f.windows.count,
+                    f.scale,
+                    if f.joint { ", joint" } else { "" }
+                )
+            })
+            .collect();
+        let prov: Vec<String> = s
+            .provenance
+            .iter()
+            .map(|(k, p)| {
+                format!(
+                    "<b>{}</b>: {} — {}{}",
+                    esc(k),
+                    esc(&p.image),
+                    esc(&p.step),
+                    p.fit_error
+                        .map(|v| format!(" (error {v:.2} px)"))
+                        .unwrap_or_default()
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
+            esc(&s.id),
+            esc(&s.label),
+            fp,
+            s.height,
+            facades.join("<br>"),
+            prov.join("<br>")
+        );
+    }
+    let _ = writeln!(h, "</table><h2>Time per stage</h2><table>");
+    for (k, v) in stages {
+        let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", esc(k));
+    }
+    let _ = writeln!(h, "</table></body></html>");
+    h
+}

@@ -1,0 +1,162 @@
+//! Issue 9 as a user meets it: `castellan demo` reconstructs the bundled castle and writes
+//! every output of `reconstruct`; broken projects give one message naming the PROJECT.toml
+//! entry and leave the output folder untouched.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+
+fn castellan() -> Command {
+    Command::cargo_bin("castellan").unwrap()
+}
+
+fn demo_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo")
+}
+
+/// A copy of the demo project whose PROJECT.toml is `edit`ed.
+fn project_with(edit: impl Fn(String) -> String) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(demo_dir()).unwrap() {
+        let p = entry.unwrap().path();
+        std::fs::copy(&p, dir.path().join(p.file_name().unwrap())).unwrap();
+    }
+    let toml = std::fs::read_to_string(dir.path().join("PROJECT.toml")).unwrap();
+    std::fs::write(dir.path().join("PROJECT.toml"), edit(toml)).unwrap();
+    dir
+}
+
+#[test]
+fn demo_writes_the_report_the_model_and_the_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("demo");
+    let assert = castellan()
+        .arg("demo")
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("report:") && stderr.contains("index.html"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("keep floors"), "{stderr}");
+    for f in [
+        "model.vsg",
+        "model.glb",
+        "model.obj",
+        "model.mtl",
+        "stats.json",
+        "estimate.json",
+        "index.html",
+        "preview.png",
+        "overlays/plan_labels.png",
+        "overlays/keep_south_near_lines.png",
+        "overlays/keep_south_far_facade.png",
+        "project/PROJECT.toml",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("estimate.json")).unwrap()).unwrap();
+    assert_eq!(estimate["units"], "m");
+    let structures = estimate["structures"].as_array().unwrap();
+    let keep = structures
+        .iter()
+        .find(|s| !s["facades"].as_array().unwrap().is_empty())
+        .unwrap();
+    assert_eq!(keep["footprint"]["type"], "rectangle");
+    assert_eq!(keep["facades"][0]["floors"].as_array().unwrap().len(), 3);
+    assert!(
+        keep["provenance"]["height"]["image"]
+            .as_str()
+            .unwrap()
+            .contains("keep_south")
+    );
+    let towers = structures
+        .iter()
+        .filter(|s| s["footprint"]["type"] == "circle")
+        .count();
+    assert_eq!(towers, 2);
+    let stats: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("stats.json")).unwrap()).unwrap();
+    assert!(stats["terminals"].as_u64().unwrap() > 100);
+    for stage in ["plan", "facades", "integrate", "vsg", "export"] {
+        assert!(stats["stages_ms"][stage].as_f64().is_some(), "{stage}");
+    }
+    // The generated program runs on its own with the library files written beside it.
+    castellan()
+        .args(["vsg", "run"])
+        .arg(out.join("model.vsg"))
+        .arg("-o")
+        .arg(out.join("again.glb"))
+        .assert()
+        .success();
+}
+
+/// Runs reconstruct on an edited demo project; it must fail, say `needle`, and write nothing.
+fn fails_naming(edit: impl Fn(String) -> String, needle: &str) {
+    let project = project_with(edit);
+    let out = project.path().join("out");
+    let assert = castellan()
+        .arg("reconstruct")
+        .arg(project.path().join("PROJECT.toml"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains(needle), "expected '{needle}' in: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!out.exists(), "nothing may be written on failure");
+}
+
+#[test]
+fn a_missing_photo_is_named() {
+    fails_naming(
+        |t| {
+            t.replacen(
+                "image = \"keep_south_far.png\"",
+                "image = \"nowhere.png\"",
+                1,
+            )
+            .replacen(
+                "facade = \"keep_south_far.png\"",
+                "facade = \"nowhere.png\"",
+                1,
+            )
+        },
+        "nowhere.png",
+    );
+}
+
+#[test]
+fn a_plan_point_outside_every_shape_is_named() {
+    fails_naming(
+        |t| {
+            t.replacen(
+                "plan_points = [[320.0, 303.0]]",
+                "plan_points = [[5.0, 5.0]]",
+                1,
+            )
+        },
+        "[[correspondence]] #1",
+    );
+}
+
+#[test]
+fn a_facade_without_a_correspondence_is_named() {
+    fails_naming(
+        |t| {
+            let cut = t.rfind("[[correspondence]]").unwrap();
+            t[..cut].to_string()
+        },
+        "no [[correspondence]]",
+    );
+}
+
+#[test]
+fn a_syntax_error_has_line_and_column() {
+    fails_naming(|t| t.replacen("seed = 7", "seed = ", 1), "PROJECT.toml:6:");
+}
