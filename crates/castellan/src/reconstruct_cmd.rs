@@ -245,6 +245,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     for (file, text) in integrate::library::FILES {
         outputs.add(&outdir.join(file), text.as_bytes().to_vec());
     }
+    let report = crate::report::html(&project, &estimate, &stats_json, &stages, &glb);
     outputs.add(&outdir.join("model.glb"), glb);
     outputs.add(&outdir.join("model.obj"), obj.into_bytes());
     outputs.add(&outdir.join("model.mtl"), mtl.into_bytes());
@@ -260,7 +261,6 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         &outdir.join("estimate.json"),
         serde_json::to_vec_pretty(&estimate)?,
     );
-    let report = crate::report::html(&project, &estimate, &stats_json, &stages);
     outputs.add(&outdir.join("index.html"), report.into_bytes());
     outputs.commit()?;
     Ok(Summary {

@@ -4,8 +4,30 @@
 
 use std::fmt::Write;
 
+use base64::Engine;
 use integrate::estimate::{Estimate, Footprint};
 use integrate::project::Project;
+
+/// The viewer script (web/src/viewer.js with three.js, bundled by build.rs).
+const VIEWER_JS: &str = include_str!(concat!(env!("OUT_DIR"), "/viewer.js"));
+
+/// Models larger than this are linked, not embedded in the page.
+pub const MAX_EMBEDDED_MODEL: usize = 64 << 20;
+
+/// The model viewer: the glb embedded as base64 and the bundled script.
+fn viewer(glb: &[u8]) -> String {
+    if glb.len() > MAX_EMBEDDED_MODEL {
+        return format!(
+            "<p>The model ({} MB) is too large to embed in this page: open <a href=\"model.glb\">model.glb</a> in Blender or another glTF viewer.</p>",
+            glb.len() >> 20
+        );
+    }
+    format!(
+        "<div style=\"display:flex;gap:1em\"><div id=\"viewer\" style=\"flex:1;height:560px;border:1px solid #ccc\"></div><div id=\"outline\" style=\"width:260px;height:560px;overflow:auto;font-size:90%\"></div></div>\n<p>Drag to orbit, scroll to zoom, right-drag to pan; untick a structure or a symbol to peel it away.</p>\n<script type=\"application/octet-stream\" id=\"castellan-model\">{}</script>\n<script>{}</script>\n",
+        base64::engine::general_purpose::STANDARD.encode(glb),
+        VIEWER_JS.replace("</script", "<\\/script")
+    )
+}
 
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -20,6 +42,7 @@ pub fn html(
     e: &Estimate,
     stats: &serde_json::Value,
     stages: &[(String, f64)],
+    glb: &[u8],
 ) -> String {
     let mut h = String::new();
     let _ = write!(
@@ -37,9 +60,10 @@ pub fn html(
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
     }
+    let _ = writeln!(h, "<h2>Model</h2>{}", viewer(glb));
     let _ = writeln!(
         h,
-        "<h2>Model</h2><img src=\"preview.png\" alt=\"rendered model\">"
+        "<details><summary>Software-rendered preview</summary><img src=\"preview.png\" alt=\"rendered model\"></details>"
     );
     let _ = writeln!(
         h,

@@ -1,0 +1,139 @@
+// castellan's model viewer: a glTF model embedded in the page (base64, so the report opens
+// from disk with no server and no network), orbit controls, and an outline to hide or show
+// each structure and each kind of terminal shape.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+function decode(base64) {
+  const bin = atob(base64.trim());
+  const bytes = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  return bytes.buffer;
+}
+
+// The structure a node belongs to: the child of the root it descends from.
+function structureOf(node, root) {
+  let n = node;
+  while (n.parent && n.parent !== root) n = n.parent;
+  return n;
+}
+
+function checkbox(list, label, count, onChange) {
+  const row = document.createElement('label');
+  row.style.display = 'block';
+  const box = document.createElement('input');
+  box.type = 'checkbox';
+  box.checked = true;
+  box.addEventListener('change', () => onChange(box.checked));
+  row.append(box, ` ${label} (${count})`);
+  list.append(row);
+}
+
+function start() {
+  const data = document.getElementById('castellan-model');
+  const container = document.getElementById('viewer');
+  if (!data || !container) return;
+  const outline = document.getElementById('outline');
+  const width = container.clientWidth || 800;
+  const height = container.clientHeight || 500;
+  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setSize(width, height);
+  container.append(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xeef1f5);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a7f70, 2.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(1, 2, 1.5);
+  scene.add(sun);
+  const camera = new THREE.PerspectiveCamera(45, width / height, 0.01, 1e7);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  let frames = 0;
+  const render = () => {
+    frames++;
+    renderer.render(scene, camera);
+  };
+  controls.addEventListener('change', render);
+
+  new GLTFLoader().parse(decode(data.textContent), '', (gltf) => {
+    const model = gltf.scene;
+    scene.add(model);
+    const box = new THREE.Box3().setFromObject(model);
+    const size = box.getSize(new THREE.Vector3()).length() || 1;
+    const centre = box.getCenter(new THREE.Vector3());
+    camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 0.8).multiplyScalar(size));
+    camera.near = size / 1000;
+    camera.far = size * 100;
+    camera.updateProjectionMatrix();
+    controls.target.copy(centre);
+    controls.update();
+    // The glTF root is the axiom; its children are the structures.
+    const root = model.children.length === 1 ? model.children[0] : model;
+    const structures = new Map();
+    const kinds = new Map();
+    model.traverse((o) => {
+      if (!o.isMesh) return;
+      const s = structureOf(o, root);
+      // The glTF node name is the VSG symbol (three.js keeps it in userData.name); imported
+      // symbols carry their namespace (`tower1.masonry`), grouped here by the symbol alone.
+      let named = o;
+      while (named && !(named.userData && named.userData.name)) named = named.parent;
+      const kind = ((named && named.userData.name) || o.name || 'shape').split('.').pop();
+      if (!structures.has(s)) structures.set(s, []);
+      structures.get(s).push(o);
+      if (!kinds.has(kind)) kinds.set(kind, []);
+      kinds.get(kind).push(o);
+    });
+    const hidden = new Set();
+    const apply = () => {
+      model.traverse((o) => {
+        if (o.isMesh) o.visible = !hidden.has(o);
+      });
+      render();
+    };
+    const toggle = (meshes, key) => (on) => {
+      for (const m of meshes) {
+        if (on) hidden.delete(m);
+        else hidden.add(m);
+      }
+      apply();
+    };
+    if (outline) {
+      const h1 = document.createElement('b');
+      h1.textContent = 'Structures';
+      outline.append(h1);
+      for (const [s, meshes] of structures) {
+        checkbox(outline, (s.name || 'structure').replace(/Site$/, ''), meshes.length, toggle(meshes));
+      }
+      const h2 = document.createElement('b');
+      h2.textContent = 'Shapes by symbol';
+      outline.append(h2);
+      for (const [k, meshes] of [...kinds].sort((a, b) => a[0].localeCompare(b[0]))) {
+        checkbox(outline, k, meshes.length, toggle(meshes));
+      }
+    }
+    container.dataset.meshes = String(structures.size ? [...structures.values()].flat().length : 0);
+    container.dataset.structures = String(structures.size);
+    render();
+    container.dataset.ready = 'true';
+  }, (err) => {
+    container.textContent = `The model could not be shown: ${err.message || err}`;
+  });
+  // Frame rate probe for tests: renders `n` frames and reports frames per second.
+  window.castellanFps = (n = 60) => new Promise((resolve) => {
+    const t0 = performance.now();
+    let k = 0;
+    const step = () => {
+      controls.autoRotate = true;
+      controls.update();
+      render();
+      if (++k < n) requestAnimationFrame(step);
+      else resolve((1000 * n) / (performance.now() - t0));
+    };
+    requestAnimationFrame(step);
+  });
+}
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', start);
+else start();
