@@ -15,8 +15,12 @@ fn main() {
         println!("cargo:rerun-if-changed=web/{f}");
     }
     if let Some(prebuilt) = std::env::var_os("CASTELLAN_VIEWER_JS") {
-        std::fs::copy(&prebuilt, out.join("viewer.js"))
-            .unwrap_or_else(|e| panic!("CASTELLAN_VIEWER_JS={}: {e}", Path::new(&prebuilt).display()));
+        std::fs::copy(&prebuilt, out.join("viewer.js")).unwrap_or_else(|e| {
+            panic!(
+                "CASTELLAN_VIEWER_JS={}: {e}",
+                Path::new(&prebuilt).display()
+            )
+        });
         return;
     }
     let work = out.join("web");
@@ -26,11 +30,16 @@ fn main() {
     std::fs::copy(web.join("package.json"), work.join("package.json")).expect("web/package.json");
     for entry in std::fs::read_dir(web.join("src")).expect("web/src") {
         let p = entry.expect("web/src entry").path();
-        std::fs::copy(&p, work.join("src").join(p.file_name().expect("a file"))).expect("copy web/src");
+        std::fs::copy(&p, work.join("src").join(p.file_name().expect("a file")))
+            .expect("copy web/src");
     }
     if installed.as_deref() != Some(&lock[..]) || !work.join("node_modules").is_dir() {
         std::fs::write(work.join("package-lock.json"), &lock).expect("OUT_DIR is writable");
-        npm(&work, &["ci", "--no-audit", "--no-fund", "--ignore-scripts"], &out);
+        npm(
+            &work,
+            &["ci", "--no-audit", "--no-fund", "--ignore-scripts"],
+            &out,
+        );
     }
     npm(&work, &["run", "build"], &out);
 }
@@ -46,5 +55,10 @@ fn npm(dir: &Path, args: &[&str], out: &Path) {
                 "castellan's build runs npm to build its web viewer (crates/castellan/web) and could not start it ({e}). Install Node.js 18+ and npm (Debian: apt-get install nodejs npm), or set CASTELLAN_VIEWER_JS to a viewer.js built elsewhere."
             )
         });
-    assert!(status.success(), "npm {} failed in {} ({status})", args.join(" "), dir.display());
+    assert!(
+        status.success(),
+        "npm {} failed in {} ({status})",
+        args.join(" "),
+        dir.display()
+    );
 }

@@ -179,7 +179,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
 
     bar.set_message("integration (ch. 6)");
     let t = Instant::now();
-    let estimate = integrate::integrate(&integrate::Inputs {
+    let mut estimate = integrate::integrate(&integrate::Inputs {
         plan: &parsed,
         plan_image: &project.plan,
         scale: project.scale,
@@ -187,7 +187,32 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         correspondences: &project.correspondences,
     })
     .map_err(|e| anyhow!("{name}: {e}"))?;
-    let program = integrate::program::generate(&estimate, &integrate::program::Options::default());
+    let mut textures = integrate::textures::facade_textures(&mut estimate, &estimates);
+    let (mut samples, sample_width) = integrate::textures::wall_samples(&estimate, &estimates);
+    for (i, t) in project.textures.iter().enumerate() {
+        let image = read_image(&dir.join(&t.image))
+            .with_context(|| format!("{name}: [[texture]] #{} (image = \"{}\")", i + 1, t.image))?
+            .to_rgb8();
+        for (k, b) in t.boxes.iter().enumerate() {
+            let crop = integrate::textures::crop(&image, *b).ok_or_else(|| {
+                anyhow!(
+                    "{name}: [[texture]] #{} box {b:?} has no pixels inside {}",
+                    i + 1,
+                    t.image
+                )
+            })?;
+            samples.push(integrate::textures::Texture {
+                name: format!("textures/sample_{}_{}.png", i + 1, k + 1),
+                image: crop,
+            });
+        }
+    }
+    let program_options = integrate::program::Options {
+        wall_textures: samples.iter().map(|t| t.name.clone()).collect(),
+        ..Default::default()
+    };
+    textures.extend(samples);
+    let program = integrate::program::generate(&estimate, &program_options);
     stages.push(("integrate".into(), ms(t)));
     bar.inc(1);
 
@@ -214,8 +239,24 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
 
     bar.set_message("export");
     let t = Instant::now();
-    let export = vsg::export::ExportOptions::default();
-    let glb = vsg::export::to_glb(&model, &export).context("cannot export model.glb")?;
+    let export = vsg::export::ExportOptions {
+        texture_scale: sample_width.unwrap_or(1.0),
+        ..Default::default()
+    };
+    let mut embedded = vsg::export::Textures::new();
+    for t in &textures {
+        let bytes = png(&t.image, Path::new(&t.name))?;
+        outputs.add(&outdir.join(&t.name), bytes.clone());
+        embedded.insert(
+            t.name.clone(),
+            vsg::export::TextureImage {
+                bytes,
+                mime_type: "image/png".into(),
+            },
+        );
+    }
+    let glb = vsg::export::to_glb_with_textures(&model, &export, &embedded)
+        .context("cannot export model.glb")?;
     let (obj, mtl) =
         vsg::export::to_obj(&model, &export, "model.mtl").context("cannot export model.obj")?;
     let picture = vsg::render::render(

@@ -40,6 +40,7 @@ pub mod program;
 pub mod project;
 pub mod structures;
 pub mod synth;
+pub mod textures;
 
 use facade::classify::Class;
 use facade::model::FacadeParams;

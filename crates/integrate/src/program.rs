@@ -14,12 +14,24 @@ use crate::estimate::{Estimate, Footprint, Kind, MappedFacade, Structure};
 pub struct Options {
     /// Storey height for structures without a façade, metres.
     pub storey_metres: f64,
+    /// Texture files from which walls without a photo pick one per shape (figure 7.6); empty
+    /// for plain colours.
+    pub wall_textures: Vec<String>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { storey_metres: 4.0 }
+        Options {
+            storey_metres: 4.0,
+            wall_textures: Vec::new(),
+        }
     }
+}
+
+/// `{"a.png", "b.png"}`.
+fn string_list(v: &[String]) -> String {
+    let quoted: Vec<String> = v.iter().map(|t| format!("{t:?}")).collect();
+    format!("{{{}}}", quoted.join(", "))
 }
 
 /// A number as the program writes it.
@@ -127,7 +139,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                     ),
                     format!("{}Site", s.id),
                 ));
-                let _ = writeln!(rules, "{id}Site :: {{{id}.Axiom}};", id = s.id);
+                site_rule(&mut rules, &s.id, o);
             }
             (
                 Footprint::Rectangle {
@@ -159,6 +171,45 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                     s.id.clone(),
                 ));
                 hollow_box_with_facades(s, o, u, &mut params, &mut rules);
+                let _ = writeln!(rules, "{id}Roof :: {{roof}};", id = s.id);
+                // A gable roof of two ramps (as library/keep.vsg), its slopes across the
+                // shorter side: the plan gives no roof, so this is the library's default.
+                let (short_across, long) = if size[1] <= size[0] {
+                    (size[1], size[0])
+                } else {
+                    (size[0], size[1])
+                };
+                let slope_dir = if size[1] <= size[0] {
+                    rotation + std::f64::consts::FRAC_PI_2
+                } else {
+                    *rotation
+                };
+                let roof_h = 0.4 * short_across;
+                let (dx, dz) = (
+                    slope_dir.cos() * short_across / 4.0,
+                    slope_dir.sin() * short_across / 4.0,
+                );
+                let _ = writeln!(
+                    params,
+                    "float[] {id}RoofS = {{{}, {}, {}}}; // ramp run, rise, length (default gable roof)",
+                    n(short_across / 2.0),
+                    n(roof_h),
+                    n(long),
+                    id = s.id
+                );
+                for (sign, turn) in [(-1.0, 0.0), (1.0, std::f64::consts::PI)] {
+                    axiom.push((
+                        format!(
+                            "T({}, {}, {}) R(0, {}, 0) I(\"ramp\", {{{id}RoofS[0], {id}RoofS[1], {id}RoofS[2]}})",
+                            n(center[0] + sign * dx),
+                            n(h + roof_h / 2.0),
+                            n(center[1] + sign * dz),
+                            n(-slope_dir + turn),
+                            id = s.id
+                        ),
+                        format!("{}Roof", s.id),
+                    ));
+                }
             }
             (
                 Footprint::Rectangle {
@@ -222,7 +273,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                     ),
                     format!("{}Site", s.id),
                 ));
-                let _ = writeln!(rules, "{id}Site :: {{{id}.Axiom}};", id = s.id);
+                site_rule(&mut rules, &s.id, o);
             }
             (
                 Footprint::Rectangle {
@@ -262,7 +313,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                     ),
                     format!("{}Site", s.id),
                 ));
-                let _ = writeln!(rules, "{id}Site :: {{{id}.Axiom}};", id = s.id);
+                site_rule(&mut rules, &s.id, o);
             }
         }
     }
@@ -290,11 +341,33 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
     let names: Vec<&str> = axiom.iter().map(|(_, s)| s.as_str()).collect();
     let _ = writeln!(out, "    {{{}}};", names.join(", "));
     out.push_str(&rules);
+    let masonry = if o.wall_textures.is_empty() {
+        "appearance(\"color\", {0.76, 0.72, 0.64})".to_string()
+    } else {
+        format!(
+            "appearance(\"color\", {{1, 1, 1}}, \"texture\", {})",
+            string_list(&o.wall_textures)
+        )
+    };
     let _ = writeln!(
         out,
-        "\n// Shared terminals.\nmasonry :: appearance(\"color\", {{0.76, 0.72, 0.64}}){{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};"
+        "\n// Shared terminals; walls without a photo pick a sample texture per shape (figure 7.6).\nmasonry :: {masonry}{{j3d.terminal}};\nfacadeWall :: {{j3d.terminal}};\nfacadeGlass :: {{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};\nroof :: appearance(\"color\", {{0.55, 0.2, 0.15}}){{j3d.terminal}};"
     );
     out
+}
+
+/// A library structure's site: with wall samples, one of them tints the whole structure (the
+/// library's own rules keep their colours, which tint the texture).
+fn site_rule(rules: &mut String, id: &str, o: &Options) {
+    if o.wall_textures.is_empty() {
+        let _ = writeln!(rules, "{id}Site :: {{{id}.Axiom}};");
+    } else {
+        let _ = writeln!(
+            rules,
+            "{id}Site :: appearance(\"texture\", {}){{{id}.Axiom}};",
+            string_list(&o.wall_textures)
+        );
+    }
 }
 
 /// Storeys of a structure: its first façade's floor count, else height / storey height.
@@ -389,6 +462,15 @@ fn facade_rules(
     let id = &s.id;
     let fid = format!("{id}Facade{k}");
     let (run, through, outside_far, reversed) = side_frame(side);
+    // Under a photo the pieces keep its texture untinted.
+    let (photo, masonry, glass) = match &f.texture {
+        Some(t) => (
+            format!("appearance(\"photo\", {t:?}, \"color\", {{1, 1, 1}}) "),
+            "facadeWall",
+            "facadeGlass",
+        ),
+        None => (String::new(), "masonry", "glass"),
+    };
     let heights: Vec<f64> = f.floors.iter().map(|fl| fl.height).collect();
     let _ = writeln!(
         params,
@@ -417,7 +499,12 @@ fn facade_rules(
         .collect();
     let _ = writeln!(
         rules,
-        "\n// {fid} replaces {id}Wall_{side} (figure 6.3).\n{id}Wall_{side} :: {{{fid}}};\n{fid} :: split(\"Y\", {{{}}}){{{}}};",
+        "\n// {fid} replaces {id}Wall_{side} (figure 6.3){}.\n{id}Wall_{side} :: {{{fid}}};\n{fid} :: {photo}split(\"Y\", {{{}}}){{{}}};",
+        if f.texture.is_some() {
+            ", the rectified photo stretched over it"
+        } else {
+            ""
+        },
         relative(&heights),
         floor_names.join(", ")
     );
@@ -465,13 +552,13 @@ fn facade_rules(
     for (i, fl) in f.floors.iter().enumerate() {
         let name = &floor_names[i];
         if fl.windows == 0 || fl.window_height <= 0.0 || !names.contains(&window) {
-            let _ = writeln!(rules, "{name} :: {{masonry}};");
+            let _ = writeln!(rules, "{name} :: {{{masonry}}};");
             continue;
         }
         let above = (fl.height - fl.window_sill - fl.window_height).max(0.0);
         let _ = writeln!(
             rules,
-            "{name} :: split(\"Y\", {{~{}, ~{}, ~{}}}){{masonry, {fid}Row, masonry}};",
+            "{name} :: split(\"Y\", {{~{}, ~{}, ~{}}}){{{masonry}, {fid}Row, {masonry}}};",
             n(fl.window_sill.max(1e-4)),
             n(fl.window_height),
             n(above.max(1e-4))
@@ -485,9 +572,9 @@ fn facade_rules(
     );
     // Glass set back in the inner third; the outer two thirds are the opening.
     let (a, b) = if outside_far {
-        ("glass", "opening")
+        (glass, "opening")
     } else {
-        ("opening", "glass")
+        ("opening", glass)
     };
     let (la, lb) = if outside_far {
         ("~1", "~2")

@@ -66,7 +66,7 @@ pub struct Correspondence {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TextureSamples {
-    /// `wall` (walls without a photo of their own) or `roof`.
+    /// `wall`: walls without a photo of their own pick one of these per shape.
     pub class: String,
     pub image: String,
     pub boxes: Vec<[f64; 4]>,
@@ -155,9 +155,9 @@ impl Project {
             }
         }
         for (i, t) in self.textures.iter().enumerate() {
-            if !matches!(t.class.as_str(), "wall" | "roof") {
+            if t.class != "wall" {
                 return bad(format!(
-                    "[[texture]] #{}: class \"{}\" is not one of wall, roof",
+                    "[[texture]] #{}: class \"{}\" is not a texture class (wall)",
                     i + 1,
                     t.class
                 ));

@@ -14,8 +14,8 @@ use crate::csg::{self, MeshBoolean};
 use crate::diag::Diagnostic;
 use crate::eval::{Scope, ShapeAttrs};
 use crate::partition::{self, Len};
-use crate::shape::{Primitive, ShapeError, Tessellation};
-use crate::tree::{Appearance, Model, Node, NodeId, NodeState, UniqueShape};
+use crate::shape::{Axis, Primitive, ShapeError, Tessellation};
+use crate::tree::{Appearance, Model, Node, NodeId, NodeState, TextureFrame, UniqueShape};
 
 /// Bounds on production, so a runaway grammar stops with an error instead of eating memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -393,7 +393,17 @@ impl Producer<'_, '_> {
                         self.model.appearances[self.model.nodes[id as usize].appearance as usize]
                             .clone()
                     });
-                    appearance = Some(set_appearance(base, attrs_list, rule.line, &mut scope)?);
+                    let node = &self.model.nodes[id as usize];
+                    let frame = shape.and_then(|p| {
+                        let size = [Axis::X, Axis::Y, Axis::Z].map(|a| p.extent(a).ok());
+                        Some(TextureFrame {
+                            world: node.world,
+                            size: [size[0]?, size[1]?, size[2]?],
+                        })
+                    });
+                    appearance = Some(set_appearance(
+                        base, attrs_list, rule.line, frame, &mut scope,
+                    )?);
                 }
                 OpKind::Void => void = true,
                 OpKind::Combine(kind) => {
@@ -455,6 +465,16 @@ impl Producer<'_, '_> {
             .collect();
         key.push(a.density.map_or(u64::MAX, f64::to_bits));
         key.push(u64::from(a.texture_line));
+        if let Some(f) = &a.texture_frame {
+            let t = f.world.translation.vector;
+            let q = f.world.rotation.coords;
+            key.extend(
+                [t.x, t.y, t.z, q.x, q.y, q.z, q.w]
+                    .iter()
+                    .chain(&f.size)
+                    .map(|v| v.to_bits()),
+            );
+        }
         if let Some(t) = &a.texture {
             key.extend(t.bytes().map(u64::from));
         }
@@ -477,27 +497,52 @@ fn eval_len(scope: &mut Scope, l: &Length) -> Result<Len, Diagnostic> {
 }
 
 const ATTRIBUTES: &str =
-    "color, transparency, ambient, diffuse, specular, emissive, shine, texture, density";
+    "color, transparency, ambient, diffuse, specular, emissive, shine, texture, photo, density";
 
 fn set_appearance(
     mut a: Appearance,
     list: &[(crate::ast::StrLit, AppearanceValue)],
     line: u32,
+    frame: Option<TextureFrame>,
     scope: &mut Scope,
 ) -> Result<Appearance, Diagnostic> {
     for (name, value) in list {
         let span = name.span;
         match name.value.as_str() {
+            // A photo stretched over the current shape (a rectified façade over its wall).
+            "photo" => match (value, frame) {
+                (AppearanceValue::Text(s), Some(f)) => {
+                    a.texture = Some(s.value.clone());
+                    a.texture_line = line;
+                    a.texture_frame = Some(f);
+                }
+                (AppearanceValue::Text(_), None) => {
+                    return Err(Diagnostic::new(
+                        "photo needs a shape to stretch over; instantiate one with I() first",
+                        span,
+                        "photo",
+                    ));
+                }
+                _ => {
+                    return Err(Diagnostic::new(
+                        "photo takes one file name in quotes",
+                        span,
+                        "photo",
+                    ));
+                }
+            },
             "texture" => match value {
                 AppearanceValue::Text(s) => {
                     a.texture = Some(s.value.clone());
                     a.texture_line = line;
+                    a.texture_frame = None;
                 }
                 // Figure 7.6: one of the photographs, picked per shape by the seeded stream.
                 AppearanceValue::Texts(v) => {
                     let pick = scope.rng.random_range(0..v.len());
                     a.texture = Some(v[pick].value.clone());
                     a.texture_line = line;
+                    a.texture_frame = None;
                 }
                 _ => {
                     return Err(Diagnostic::new(

@@ -80,6 +80,19 @@ pub struct Appearance {
     /// Density of the material in kg/m³ (`appearance("density", 2400)`): terminals with one
     /// get a mass in STATS.json.
     pub density: Option<f64>,
+    /// Set by `appearance("photo", "f.png")`: the texture is stretched over this frame's box
+    /// (a façade photo over its wall) and every descendant samples it where it lies in that
+    /// box, instead of the box projection at real scale.
+    #[serde(skip)]
+    pub texture_frame: Option<TextureFrame>,
+}
+
+/// The box a photo texture covers: the frame (centre and orientation, world) and size of the
+/// shape whose rule set it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureFrame {
+    pub world: Isometry3<f64>,
+    pub size: [f64; 3],
 }
 
 impl Default for Appearance {
@@ -95,6 +108,7 @@ impl Default for Appearance {
             texture: None,
             texture_line: 0,
             density: None,
+            texture_frame: None,
         }
     }
 }

@@ -59,6 +59,8 @@ struct Builder {
     uv_scale: Option<f64>,
     /// Embedded textures by name.
     textures: HashMap<String, json::Index<json::Texture>>,
+    /// While adding a mesh under a photo: node frame → photo frame, and the photo box's size.
+    uv_frame: Option<(nalgebra::Isometry3<f64>, [f64; 3])>,
 }
 
 pub(super) fn write_glb(
@@ -91,7 +93,19 @@ pub(super) fn write_glb(
         let mut mesh = None;
         let solid = model.solid(i as u32);
         if let (NodeState::Terminal, Some(p)) = (node.state, &solid) {
-            let key = ShapeKey::of(p);
+            let appearance = &model.appearances[node.appearance as usize];
+            let frame = appearance.texture_frame.filter(|_| {
+                b.uv_scale.is_some()
+                    && appearance
+                        .texture
+                        .as_ref()
+                        .is_some_and(|t| textures.contains_key(t))
+            });
+            let key = match frame {
+                Some(_) => ShapeKey::Framed(i as u32),
+                None => ShapeKey::of(p),
+            };
+            b.uv_frame = frame.map(|f| (f.world.inverse() * node.world, f.size));
             let slot = palette.slot(node.appearance);
             if slot as usize == b.root.materials.len() {
                 let index = palette.used[slot as usize];
@@ -120,6 +134,7 @@ pub(super) fn write_glb(
                     b.add_mesh(key, p.name(), slot, shade)?
                 }
             };
+            b.uv_frame = None;
         }
         let shape = node.shape.as_ref();
         let extras = NodeExtras {
@@ -315,7 +330,15 @@ impl Builder {
                 self.bin.extend_from_slice(&c.to_le_bytes());
             }
             if let Some(scale) = self.uv_scale {
-                for c in box_uv(local, normal, scale) {
+                let uv = match &self.uv_frame {
+                    Some((to_frame, size)) => {
+                        let p = to_frame * nalgebra::Point3::from(local);
+                        let n = to_frame.rotation * nalgebra::Vector3::from(normal);
+                        photo_uv([p.x, p.y, p.z], [n.x, n.y, n.z], *size)
+                    }
+                    None => box_uv(local, normal, scale),
+                };
+                for c in uv {
                     self.bin.extend_from_slice(&(c as f32).to_le_bytes());
                 }
             }
@@ -453,6 +476,24 @@ impl Builder {
             out.extend_from_slice(&self.bin);
         }
         Ok(out)
+    }
+}
+
+/// Texture coordinates of a vertex at `p` with normal `n`, both in a photo's frame of box size
+/// `size`: the photo covers each face of the box once, as seen from outside (so a façade photo
+/// reads left to right on its wall whichever way the wall faces), up is +Y.
+pub(super) fn photo_uv(p: [f64; 3], n: [f64; 3], size: [f64; 3]) -> [f64; 2] {
+    let [sx, sy, sz] = size.map(|v| if v.abs() > 1e-12 { v } else { 1.0 });
+    let a = n.map(f64::abs);
+    let v = 0.5 - p[1] / sy;
+    if a[1] > a[0] && a[1] > a[2] {
+        [0.5 + p[0] / sx, 0.5 + p[2] / sz]
+    } else if a[0] >= a[2] {
+        let u = p[2] / sz;
+        [if n[0] > 0.0 { 0.5 - u } else { 0.5 + u }, v]
+    } else {
+        let u = p[0] / sx;
+        [if n[2] > 0.0 { 0.5 + u } else { 0.5 - u }, v]
     }
 }
 

@@ -184,8 +184,14 @@ pub(crate) fn check_model(model: &Model) -> Result<(), ExportError> {
 /// unique shape (each has its own mesh).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) enum ShapeKey {
-    Primitive { kind: ShapeType, params: [u64; 6] },
+    Primitive {
+        kind: ShapeType,
+        params: [u64; 6],
+    },
     Unique(NodeId),
+    /// A terminal under a photo (`appearance("photo", …)`): its texture coordinates depend on
+    /// where it lies in the photo's frame, so its mesh is its own.
+    Framed(NodeId),
 }
 
 impl ShapeKey {

@@ -387,3 +387,81 @@ fn box_uv_projects_on_the_dominant_axis() {
     // A degenerate scale falls back to 1.
     assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], 0.0), [1.0, -2.0]);
 }
+
+#[test]
+fn photo_uv_covers_each_face_once_seen_from_outside() {
+    use super::gltf::photo_uv;
+    let size = [6.0, 2.0, 1.0];
+    // Front (+z): left edge u = 0, right edge u = 1, top v = 0, bottom v = 1.
+    assert_eq!(
+        photo_uv([-3.0, 1.0, 0.5], [0.0, 0.0, 1.0], size),
+        [0.0, 0.0]
+    );
+    assert_eq!(
+        photo_uv([3.0, -1.0, 0.5], [0.0, 0.0, 1.0], size),
+        [1.0, 1.0]
+    );
+    // Back (−z) seen from behind: its left is +x.
+    assert_eq!(
+        photo_uv([3.0, 1.0, -0.5], [0.0, 0.0, -1.0], size),
+        [0.0, 0.0]
+    );
+    // +x side seen from outside: its left is +z.
+    assert_eq!(photo_uv([3.0, 1.0, 0.5], [1.0, 0.0, 0.0], size), [0.0, 0.0]);
+}
+
+#[test]
+fn a_photo_spans_the_wall_it_is_set_on_across_the_pieces_split_from_it() {
+    let src = r#"Axiom :: I("box", {6, 2, 1}){wall};
+wall :: appearance("photo", "p.png") split("X", {~1, ~1, ~1}){piece, piece, piece};
+piece :: {j3d.terminal};"#;
+    let model = crate::run(src, &crate::RunOptions::default()).unwrap();
+    let mut textures = Textures::new();
+    textures.insert(
+        "p.png".into(),
+        TextureImage {
+            bytes: b"\x89PNG\r\n\x1a\nbytes".to_vec(),
+            mime_type: "image/png".into(),
+        },
+    );
+    let glb = to_glb_with_textures(&model, &ExportOptions::default(), &textures).unwrap();
+    let (json, bin) = parse_glb(&glb);
+    let meshes = json["meshes"].as_array().unwrap();
+    assert_eq!(
+        meshes.len(),
+        3,
+        "each piece under the photo has its own mesh"
+    );
+    let mut spans: Vec<(f64, f64)> = meshes
+        .iter()
+        .map(|m| {
+            let a = &m["primitives"][0]["attributes"];
+            let uvs = read_accessor(&json, bin, a["TEXCOORD_0"].as_u64().unwrap());
+            let normals = read_accessor(&json, bin, a["NORMAL"].as_u64().unwrap());
+            let front: Vec<&Vec<f64>> = uvs
+                .iter()
+                .zip(&normals)
+                .filter(|(_, n)| n[2] > 0.9)
+                .map(|(uv, _)| uv)
+                .collect();
+            assert!(
+                front
+                    .iter()
+                    .all(|uv| uv[1].abs() < 1e-6 || (uv[1] - 1.0).abs() < 1e-6)
+            );
+            let lo = front.iter().map(|uv| uv[0]).fold(f64::INFINITY, f64::min);
+            let hi = front
+                .iter()
+                .map(|uv| uv[0])
+                .fold(f64::NEG_INFINITY, f64::max);
+            (lo, hi)
+        })
+        .collect();
+    spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (k, (lo, hi)) in spans.iter().enumerate() {
+        assert!(
+            (lo - k as f64 / 3.0).abs() < 1e-5 && (hi - (k + 1) as f64 / 3.0).abs() < 1e-5,
+            "{spans:?}"
+        );
+    }
+}
