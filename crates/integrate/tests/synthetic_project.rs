@@ -113,3 +113,71 @@ fn keep_and_towers_match_facades_and_plan() {
         .count();
     assert_eq!(windows as u32, castle.floors * castle.windows, "{src}");
 }
+
+#[test]
+fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
+    let castle = Castle::default();
+    let plan = plan::parse(
+        &image::DynamicImage::ImageLuma8(castle.plan()),
+        &plan::Options::default(),
+    )
+    .unwrap();
+    let photo = castle.photo(20.0, 0.0, 3);
+    let name = "tower_photo.png";
+    let estimate = estimate_facade(&FacadePhoto {
+        name,
+        image: &photo.image,
+        training: &photo.training,
+        lines: None,
+        rectified: true,
+        seed: 7,
+    })
+    .unwrap();
+    // The west tower at (110, 100), radius 36 px: from its south point counter-clockwise to
+    // its east point, a quarter of the circle.
+    let (c, r) = castle.towers[0];
+    let correspondence = Correspondence {
+        facade: name.into(),
+        facade_point: photo.facade_point,
+        plan_points: vec![[c[0], c[1] + r * 0.5], [c[0] + r * 0.5, c[1]]],
+    };
+    let result = integrate(&Inputs {
+        plan: &plan,
+        plan_image: "plan.png",
+        scale: Some(castle.metres_per_pixel),
+        facades: std::slice::from_ref(&estimate),
+        correspondences: std::slice::from_ref(&correspondence),
+    })
+    .unwrap();
+    let tower = keep(&result.structures);
+    assert_eq!(tower.label, "tower_room");
+    let f = &tower.facades[0];
+    assert_eq!(f.side, "arc");
+    let [a, b] = f.arc.unwrap();
+    // Within the 0.5-px offset of the fitted centre from the drawn one, seen 18 px away.
+    assert!((b - a - std::f64::consts::FRAC_PI_2).abs() < 0.1, "{a} {b}");
+    let Footprint::Circle { radius, .. } = tower.footprint else {
+        panic!()
+    };
+    // s = d_p / w_f: the façade's width becomes the tower's diameter.
+    assert!((f.width - 2.0 * radius).abs() < 1e-9);
+    assert!((tower.height - f.scale * (f.bbox[3] - f.bbox[1])).abs() < 1e-9);
+    let src = program::generate(&result, &program::Options::default());
+    let line = src
+        .lines()
+        .find(|l| l.contains("as tower1 ("))
+        .expect("the tower imports the library");
+    assert!(
+        line.contains(&format!("floors = {}", f.floors.len())),
+        "{line}"
+    );
+    // Four windows per floor on a quarter turn: 16 slits around.
+    assert!(line.contains("slits = 16"), "{line}");
+    vsg::run_with(
+        "model.vsg",
+        &src,
+        &vsg::RunOptions::default(),
+        &mut integrate::library::Library,
+    )
+    .unwrap_or_else(|e| panic!("{}", e.render("model.vsg", &src)));
+}
