@@ -51,7 +51,10 @@ fn synthetic() -> Gray {
             } else if slant < 20.0 {
                 v = 120.0;
             }
-            v + ((x * 12.9898 + y * 78.233).sin() * 43758.5453).fract().abs() * 6.0
+            v + ((x * 12.9898 + y * 78.233).sin() * 43758.5453)
+                .fract()
+                .abs()
+                * 6.0
         })
         .map(|v| v as f32)
         .collect();
