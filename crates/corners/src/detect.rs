@@ -562,6 +562,105 @@ mod tests {
     }
 
     #[test]
+    fn window_sums_match_a_direct_count() {
+        let (w, h) = (23, 17);
+        let mut e = EdgeMap {
+            width: w,
+            height: h,
+            mag: vec![0.0; w * h],
+            offset: vec![[0.0; 2]; w * h],
+            orient: vec![[0.0; 2]; w * h],
+            mean: 1.0,
+        };
+        for i in 0..w * h {
+            if (i * 7919) % 5 < 2 {
+                let t = i as f32 * 0.37;
+                e.mag[i] = 2.0;
+                e.orient[i] = [t.cos(), t.sin()];
+            }
+        }
+        let sums = WindowSums::new(&e);
+        for (x0, y0, x1, y1) in [
+            (0, 0, 22, 16),
+            (3, 4, 15, 16),
+            (10, 0, 10, 0),
+            (5, 9, 20, 12),
+        ] {
+            let mut want = [0.0f64; 3];
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let i = y * w + x;
+                    if e.mag[i] > 0.0 {
+                        want[0] += 1.0;
+                        want[1] += e.orient[i][0] as f64;
+                        want[2] += e.orient[i][1] as f64;
+                    }
+                }
+            }
+            let got = sums.sum(x0, y0, x1, y1);
+            assert_eq!(got[0], want[0]);
+            // Fixed point: at most half a unit (1/4096) of rounding per point.
+            for k in 1..3 {
+                assert!((got[k] - want[k]).abs() <= want[0] * 0.5 / 4096.0 + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn cursor_gathering_gives_the_windows_of_a_direct_scan() {
+        // Two overlapping squares: many edge points per row, windows clipped at the border.
+        let (w, h) = (48usize, 40usize);
+        let data = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                let a = (3..30).contains(&x) && (2..25).contains(&y);
+                let b = (18..46).contains(&x) && (12..38).contains(&y);
+                40.0 + 90.0 * a as u8 as f32 + 70.0 * b as u8 as f32
+            })
+            .collect();
+        let p = Params {
+            max_coherence: 1.0,
+            ..Params::default()
+        };
+        let edges = edge_map(&Gray::new(w, h, data), p.window, p.sigma, p.subpixel);
+        let got = candidates(&edges, &p);
+        let r = (p.window / 2) as isize;
+        let mut want = Vec::new();
+        for y in 0..h as isize {
+            for x in 0..w as isize {
+                if edges.mag[(y as usize) * w + x as usize] <= 0.0 {
+                    continue;
+                }
+                let mut win = Window::with_capacity(0);
+                for yy in (y - r).max(0)..=(y + r).min(h as isize - 1) {
+                    for xx in (x - r).max(0)..=(x + r).min(w as isize - 1) {
+                        let i = yy as usize * w + xx as usize;
+                        if edges.mag[i] > 0.0 {
+                            let o = edges.offset[i];
+                            let wt = (edges.mag[i] / edges.mean) as f64;
+                            win.push(
+                                xx as f64 + o[0] as f64 - x as f64,
+                                yy as f64 + o[1] as f64 - y as f64,
+                                wt * wt,
+                            );
+                        }
+                    }
+                }
+                if win.len() < p.window {
+                    continue;
+                }
+                if let Some(mut c) = evaluate(&mut win, r as f64, &p) {
+                    c.x += x as f64;
+                    c.y += y as f64;
+                    want.push(c);
+                }
+            }
+        }
+        assert!(want.len() >= 4, "{} candidates", want.len());
+        assert_eq!(got, want);
+    }
+
+    #[test]
     fn suppression_keeps_the_smallest_delta() {
         let mk = |x: f64, delta: f64| Corner {
             x,
