@@ -16,14 +16,26 @@ and excludes reading the image. With --castellan BIN the script then runs
 run on the same images, and the repeatability of every detector is computed by the same Rust
 code.
 
+With --speed-table FILE.md (and --castellan BIN) it instead times, image by image and
+interleaved so both see the same machine load, OpenCV Harris (cornerHarris + 3x3 non-maximum
+suppression, one thread) against `BIN corners IMAGE` run with RAYON_NUM_THREADS=1 (the detection
+time it prints, which excludes decoding and writing), --repeat times each, and writes a
+per-image table of the fastest run of each and their ratio (on a shared machine the fastest
+run is the one least disturbed by other work).
+
 Setup (never inside the repository):
     python3 -m venv /tmp/cv-venv && /tmp/cv-venv/bin/pip install -r benches/requirements.txt
     /tmp/cv-venv/bin/python benches/corners_peers.py ../shared/data/oxford_affine -o /tmp/peers \
         --castellan target/release/castellan --eval-out /tmp/corners-eval
+    /tmp/cv-venv/bin/python benches/corners_peers.py ../shared/data/oxford_affine -o /tmp/peers \
+        --castellan target/release/castellan --speed-table /tmp/corners-speed.md --repeat 5
 """
 
 import argparse
 import json
+import os
+import re
+import tempfile
 import statistics
 import subprocess
 import sys
@@ -105,6 +117,48 @@ def run_sequence(folder, repeat):
     return result
 
 
+def castellan_ms(binary, image, scratch):
+    """Detection time printed by `castellan corners` on one thread."""
+    env = dict(os.environ, RAYON_NUM_THREADS="1")
+    out = subprocess.run([str(binary), "corners", str(image), "-o", str(scratch)],
+                         env=env, check=True, capture_output=True, text=True)
+    m = re.search(r"([0-9.]+) ms;", out.stderr)
+    if not m:
+        sys.exit(f"{binary}: unexpected output {out.stderr!r}")
+    return float(m.group(1))
+
+
+def speed_table(folders, binary, repeat, path):
+    """Per-image best times of Harris and castellan, interleaved, and their ratio."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        scratch = Path(tmp) / "corners.json"
+        for folder in folders:
+            for p in images(folder):
+                g = np.float32(cv2.imread(str(p), cv2.IMREAD_GRAYSCALE))
+                h_ms, c_ms = [], []
+                for _ in range(repeat):
+                    t0 = time.perf_counter()
+                    harris(g)
+                    h_ms.append((time.perf_counter() - t0) * 1e3)
+                    c_ms.append(castellan_ms(binary, p, scratch))
+                h, c = min(h_ms), min(c_ms)
+                rows.append((folder.name, p.name, g.shape[1], g.shape[0], c, h, c / h))
+                print(f"{folder.name}/{p.name}: IPFIT {c:.1f} ms, Harris {h:.1f} ms, "
+                      f"ratio {c / h:.2f}", file=sys.stderr)
+    ratios = [r[6] for r in rows]
+    load = os.getloadavg()[0]
+    md = [f"Per image, fastest of {repeat} interleaved runs, one thread each; "
+          f"load average at the end {load:.1f} on {os.cpu_count()} cores.", "",
+          "| image | size | IPFIT ms | Harris ms | ratio |", "| --- | --- | ---: | ---: | ---: |"]
+    md += [f"| {s}/{n} | {w}×{h} | {c:.1f} | {hm:.1f} | {r:.2f}× |"
+           for s, n, w, h, c, hm, r in rows]
+    md += ["", f"Median ratio {statistics.median(ratios):.2f}×, "
+               f"range {min(ratios):.2f}–{max(ratios):.2f}× over {len(rows)} images."]
+    path.write_text("\n".join(md) + "\n")
+    print(f"written to {path}", file=sys.stderr)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("data", type=Path, help="folder holding the sequence folders")
@@ -114,8 +168,16 @@ def main():
     ap.add_argument("--castellan", type=Path, help="castellan binary: also run corners-eval")
     ap.add_argument("--eval-out", type=Path, default=Path("corners-eval"))
     ap.add_argument("--overlays", type=float, help="passed to corners-eval --overlays")
+    ap.add_argument("--speed-table", type=Path,
+                    help="only time Harris against `castellan corners` per image (Markdown)")
     args = ap.parse_args()
     cv2.setNumThreads(1)
+    if args.speed_table:
+        if not args.castellan:
+            sys.exit("--speed-table needs --castellan BIN")
+        speed_table([args.data / s for s in args.sequences], args.castellan, args.repeat,
+                    args.speed_table)
+        return
     args.out.mkdir(parents=True, exist_ok=True)
     folders = [args.data / s for s in args.sequences]
     for f in folders:

@@ -2,11 +2,14 @@
 //! corner and asymptotes (§2.1.3), the features Φ = (ε, λ, Δ, ψ) (§2.1.4), the thresholds and
 //! the non-minimum suppression of Δ (§2.1.5). Rows of the image run in parallel (rayon).
 
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::edge::{EdgeMap, Gray, edge_map};
-use crate::fit::{Asymptotes, fit_hyperbola};
+use crate::fit::{Asymptotes, Moments, fit_moments};
 
 /// Every parameter of the detector. Defaults are those of §2.1 except where noted.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -147,9 +150,8 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
         return Vec::new();
     }
     let sums = WindowSums::new(edges);
-    // Edge points row by row (x, sub-pixel x, sub-pixel y, weight), so a window gathers its
-    // points without scanning its empty pixels.
-    let rows: Vec<Vec<(isize, [f64; 3])>> = (0..h)
+    // Edge points row by row, so a window gathers its points without scanning its empty pixels.
+    let rows: Vec<Vec<EdgePoint>> = (0..h)
         .into_par_iter()
         .map(|y| {
             (0..w)
@@ -157,18 +159,17 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
                 .map(|x| {
                     let i = y * w + x;
                     let o = edges.offset[i];
-                    (
-                        x as isize,
-                        [
-                            x as f64 + o[0] as f64,
-                            y as f64 + o[1] as f64,
-                            // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared gradient
-                            // magnitude, so we weight by E itself (over its mean, which leaves
-                            // the fit unchanged) rather than by its square, which would let a
-                            // few strong pixels decide the fit.
-                            (edges.mag[i] / edges.mean) as f64,
-                        ],
-                    )
+                    // Eq. 2.2 weights rows by ‖Ê‖²; Ê is already the squared gradient
+                    // magnitude, so we weight by E itself (over its mean, which leaves the fit
+                    // unchanged) rather than by its square, which would let a few strong
+                    // pixels decide the fit.
+                    let weight = (edges.mag[i] / edges.mean) as f64;
+                    EdgePoint {
+                        col: x as isize,
+                        x: x as f64 + o[0] as f64,
+                        y: y as f64 + o[1] as f64,
+                        w2: weight * weight,
+                    }
                 })
                 .collect()
         })
@@ -176,15 +177,21 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
     (0..h)
         .into_par_iter()
         .flat_map_iter(|y| {
-            let mut pts: Vec<[f64; 3]> = Vec::with_capacity(params.window * params.window);
+            let mut win = Window::with_capacity(params.window * params.window);
             let mut out = Vec::new();
-            for &(x, _) in &rows[y] {
-                let (y0, y1) = (
-                    (y as isize - r).max(0),
-                    (y as isize + r).min(h as isize - 1),
-                );
+            let (y0, y1) = (
+                (y as isize - r).max(0) as usize,
+                (y as isize + r).min(h as isize - 1) as usize,
+            );
+            let band = &rows[y0..=y1];
+            // Windows slide left to right along the row, so each band row's span of points in
+            // the window only moves right: two cursors per row replace a search per window.
+            let mut lo = vec![0usize; band.len()];
+            let mut hi = vec![0usize; band.len()];
+            for centre in &rows[y] {
+                let x = centre.col;
                 let (x0, x1) = ((x - r).max(0), (x + r).min(w as isize - 1));
-                let [n, c2, s2] = sums.sum(x0 as usize, y0 as usize, x1 as usize, y1 as usize);
+                let [n, c2, s2] = sums.sum(x0 as usize, y0, x1 as usize, y1);
                 // §2.1.2: fewer than W edge points in the window is a short or noisy contour.
                 if n < params.window as f64 - 0.5 {
                     continue;
@@ -192,18 +199,23 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
                 if (c2 * c2 + s2 * s2).sqrt() > params.max_coherence * n {
                     continue;
                 }
-                pts.clear();
+                win.clear();
                 let (cx, cy) = (x as f64, y as f64);
-                for row in &rows[y0 as usize..=y1 as usize] {
-                    let start = row.partition_point(|p| p.0 < x0);
-                    for &(_, p) in row[start..].iter().take_while(|p| p.0 <= x1) {
-                        pts.push([p[0] - cx, p[1] - cy, p[2]]);
+                for (k, row) in band.iter().enumerate() {
+                    while lo[k] < row.len() && row[lo[k]].col < x0 {
+                        lo[k] += 1;
+                    }
+                    hi[k] = hi[k].max(lo[k]);
+                    while hi[k] < row.len() && row[hi[k]].col <= x1 {
+                        hi[k] += 1;
+                    }
+                    for p in &row[lo[k]..hi[k]] {
+                        win.push(p.x - cx, p.y - cy, p.w2);
                     }
                 }
-                let x = x as usize;
-                if let Some(mut c) = evaluate(&mut pts, r as f64, params) {
-                    c.x += x as f64;
-                    c.y += y as f64;
+                if let Some(mut c) = evaluate(&mut win, r as f64, params) {
+                    c.x += cx;
+                    c.y += cy;
                     out.push(c);
                 }
             }
@@ -212,45 +224,129 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
         .collect()
 }
 
+/// One point of Ê for the window fits: its pixel column, sub-pixel position and squared weight.
+struct EdgePoint {
+    col: isize,
+    x: f64,
+    y: f64,
+    w2: f64,
+}
+
+/// The points of one window relative to its centre, as separate coordinate arrays so the loops
+/// over them vectorise; reused from window to window.
+struct Window {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    w2: Vec<f64>,
+}
+
+impl Window {
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            x: Vec::with_capacity(n),
+            y: Vec::with_capacity(n),
+            w2: Vec::with_capacity(n),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.x.clear();
+        self.y.clear();
+        self.w2.clear();
+    }
+
+    #[inline]
+    fn push(&mut self, x: f64, y: f64, w2: f64) {
+        self.x.push(x);
+        self.y.push(y);
+        self.w2.push(w2);
+    }
+
+    fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// Scatter moments of the points, coordinates divided by `scale`.
+    fn moments(&self, scale: f64) -> Moments {
+        let s = 1.0 / scale;
+        let mut mo = Moments::default();
+        for ((&x, &y), &w2) in self.x.iter().zip(&self.y).zip(&self.w2) {
+            mo.add(x * s, y * s, w2);
+        }
+        mo
+    }
+
+    /// Keeps the points within `d` of either asymptote, in order.
+    fn retain_near(&mut self, h: &Asymptotes, d: f64) {
+        let mut k = 0;
+        for i in 0..self.len() {
+            let (x, y) = (self.x[i], self.y[i]);
+            if h.distance(0, x, y).min(h.distance(1, x, y)) <= d {
+                self.x[k] = x;
+                self.y[k] = y;
+                self.w2[k] = self.w2[i];
+                k += 1;
+            }
+        }
+        self.x.truncate(k);
+        self.y.truncate(k);
+        self.w2.truncate(k);
+    }
+}
+
 /// Summed-area tables of (count, cos 2θ, sin 2θ) over the edge points, for O(1) window sums.
+/// The orientations are stored in fixed point (1/4096) and all sums wrap: modular arithmetic
+/// makes every window's sum exact however large the image, in half the memory of `f64`s.
 struct WindowSums {
     stride: usize,
-    table: Vec<[f64; 3]>,
+    table: Vec<[i32; 3]>,
 }
+
+const ORIENT_UNIT: f32 = 4096.0;
 
 impl WindowSums {
     fn new(e: &EdgeMap) -> Self {
         let stride = e.width + 1;
-        let mut table = vec![[0.0; 3]; stride * (e.height + 1)];
+        let mut table = vec![[0i32; 3]; stride * (e.height + 1)];
         for y in 0..e.height {
-            let mut row = [0.0; 3];
+            let mut row = [0i32; 3];
             for x in 0..e.width {
                 let i = y * e.width + x;
                 if e.mag[i] > 0.0 {
-                    row[0] += 1.0;
-                    row[1] += e.orient[i][0] as f64;
-                    row[2] += e.orient[i][1] as f64;
+                    row[0] = row[0].wrapping_add(1);
+                    row[1] = row[1].wrapping_add((e.orient[i][0] * ORIENT_UNIT).round() as i32);
+                    row[2] = row[2].wrapping_add((e.orient[i][1] * ORIENT_UNIT).round() as i32);
                 }
                 let above = table[y * stride + x + 1];
                 table[(y + 1) * stride + x + 1] =
-                    [above[0] + row[0], above[1] + row[1], above[2] + row[2]];
+                    std::array::from_fn(|k| above[k].wrapping_add(row[k]));
             }
         }
         Self { stride, table }
     }
 
-    /// Sums over x0..=x1, y0..=y1.
+    /// Sums over x0..=x1, y0..=y1: (count, Σ cos 2θ, Σ sin 2θ).
     fn sum(&self, x0: usize, y0: usize, x1: usize, y1: usize) -> [f64; 3] {
         let t = |x: usize, y: usize| self.table[y * self.stride + x];
         let (a, b, c, d) = (t(x1 + 1, y1 + 1), t(x0, y1 + 1), t(x1 + 1, y0), t(x0, y0));
-        std::array::from_fn(|k| a[k] - b[k] - c[k] + d[k])
+        let s: [i32; 3] = std::array::from_fn(|k| {
+            a[k].wrapping_sub(b[k])
+                .wrapping_sub(c[k])
+                .wrapping_add(d[k])
+        });
+        [
+            s[0] as f64,
+            s[1] as f64 / ORIENT_UNIT as f64,
+            s[2] as f64 / ORIENT_UNIT as f64,
+        ]
     }
 }
 
 /// Fit, shape model, features and thresholds for the edge points of one window (coordinates
-/// relative to the window centre, `r` its half side). The point list may be reordered.
-fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> {
-    let mut q = fit_hyperbola(pts, r.max(1.0))?;
+/// relative to the window centre, `r` its half side). The refit drops points from the window.
+fn evaluate(pts: &mut Window, r: f64, params: &Params) -> Option<Corner> {
+    let scale = r.max(1.0);
+    let mut q = fit_moments(&pts.moments(scale), scale)?;
     let mut h = Asymptotes::of(&q)?;
     // Speed-up: a first corner more than a window away from the window is not brought back
     // inside by discarding outliers, so the refit is not tried.
@@ -258,12 +354,11 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
         return None;
     }
     if params.refit {
-        let d = params.refit_distance;
         let before = pts.len();
-        pts.retain(|p| h.distance(0, p[0], p[1]).min(h.distance(1, p[0], p[1])) <= d);
+        pts.retain_near(&h, params.refit_distance);
         // Nothing discarded: the refit would return the same curve.
         if pts.len() < before {
-            q = fit_hyperbola(pts, r.max(1.0))?;
+            q = fit_moments(&pts.moments(scale), scale)?;
             h = Asymptotes::of(&q)?;
         }
     }
@@ -286,8 +381,8 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
     let (mut n1, mut n2, mut sum) = (0usize, 0usize, 0.0);
     // Signed extent of each line's inliers along its direction, to orient the directions.
     let mut along = [0.0f64; 2];
-    for p in pts.iter() {
-        let (d1, d2) = (h.distance(0, p[0], p[1]), h.distance(1, p[0], p[1]));
+    for (&x, &y) in pts.x.iter().zip(&pts.y) {
+        let (d1, d2) = (h.distance(0, x, y), h.distance(1, x, y));
         let d = d1.min(d2);
         if d > params.refit_distance {
             continue;
@@ -299,7 +394,7 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
         } else {
             n2 += 1;
         }
-        along[i] += (p[0] - h.s[0]) * h.v[i][0] + (p[1] - h.s[1]) * h.v[i][1];
+        along[i] += (x - h.s[0]) * h.v[i][0] + (y - h.s[1]) * h.v[i][1];
     }
     // Each direction points from the corner along its edge (towards most of that line's
     // points): for an L-corner, the two arms.
@@ -343,36 +438,72 @@ fn evaluate(pts: &mut Vec<[f64; 3]>, r: f64, params: &Params) -> Option<Corner> 
 /// Non-minimum suppression of Δ (§2.1.5): a candidate survives when no candidate with a smaller
 /// |Δ| lies in the W × W window centred on it. Greedy over |Δ| ascending, with a grid of W-sized
 /// cells for the neighbour look-up.
-pub fn suppress(mut cands: Vec<Corner>, window: usize) -> Vec<Corner> {
-    cands.sort_by(|a, b| {
-        a.delta
-            .abs()
-            .total_cmp(&b.delta.abs())
-            .then(a.y.total_cmp(&b.y))
-            .then(a.x.total_cmp(&b.x))
+pub fn suppress(cands: Vec<Corner>, window: usize) -> Vec<Corner> {
+    // Sort keys, not the corners themselves (tens of thousands of candidates on textured images).
+    let mut order: Vec<(f64, f64, f64, usize)> = cands
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (c.delta.abs(), c.y, c.x, i))
+        .collect();
+    order.sort_unstable_by(|a, b| {
+        a.0.total_cmp(&b.0)
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.total_cmp(&b.2))
+            .then(a.3.cmp(&b.3))
     });
     let half = (window / 2) as f64;
     let cell = window.max(1) as f64;
-    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> = Default::default();
-    let mut kept: Vec<Corner> = Vec::new();
-    for c in cands {
-        let (gx, gy) = ((c.x / cell).floor() as i64, (c.y / cell).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>> =
+        HashMap::default();
+    let mut kept: Vec<usize> = Vec::new();
+    for &(_, y, x, i) in &order {
+        let (gx, gy) = ((x / cell).floor() as i64, (y / cell).floor() as i64);
         let clash = (-1..=1).any(|dy| {
             (-1..=1).any(|dx| {
                 grid.get(&(gx + dx, gy + dy)).is_some_and(|v| {
                     v.iter().any(|&k| {
-                        (kept[k].x - c.x).abs() <= half && (kept[k].y - c.y).abs() <= half
+                        let o = &cands[kept[k]];
+                        (o.x - x).abs() <= half && (o.y - y).abs() <= half
                     })
                 })
             })
         });
         if !clash {
             grid.entry((gx, gy)).or_default().push(kept.len());
-            kept.push(c);
+            kept.push(i);
         }
     }
-    kept.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
-    kept
+    kept.sort_unstable_by(|&a, &b| {
+        let (a, b) = (&cands[a], &cands[b]);
+        a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x))
+    });
+    let mut cands: Vec<Option<Corner>> = cands.into_iter().map(Some).collect();
+    kept.into_iter().filter_map(|i| cands[i].take()).collect()
+}
+
+/// A multiplicative hash for grid cells: the default SipHash took a tenth of the suppression
+/// time, and cell keys need no protection against crafted collisions.
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+
+    fn write_i64(&mut self, v: i64) {
+        self.write_u64(v as u64);
+    }
+
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
 }
 
 #[cfg(test)]
@@ -428,6 +559,105 @@ mod tests {
             ..Params::default()
         };
         assert_eq!(detect(&square(64, 20, 44), &p).unwrap().corners.len(), 4);
+    }
+
+    #[test]
+    fn window_sums_match_a_direct_count() {
+        let (w, h) = (23, 17);
+        let mut e = EdgeMap {
+            width: w,
+            height: h,
+            mag: vec![0.0; w * h],
+            offset: vec![[0.0; 2]; w * h],
+            orient: vec![[0.0; 2]; w * h],
+            mean: 1.0,
+        };
+        for i in 0..w * h {
+            if (i * 7919) % 5 < 2 {
+                let t = i as f32 * 0.37;
+                e.mag[i] = 2.0;
+                e.orient[i] = [t.cos(), t.sin()];
+            }
+        }
+        let sums = WindowSums::new(&e);
+        for (x0, y0, x1, y1) in [
+            (0, 0, 22, 16),
+            (3, 4, 15, 16),
+            (10, 0, 10, 0),
+            (5, 9, 20, 12),
+        ] {
+            let mut want = [0.0f64; 3];
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let i = y * w + x;
+                    if e.mag[i] > 0.0 {
+                        want[0] += 1.0;
+                        want[1] += e.orient[i][0] as f64;
+                        want[2] += e.orient[i][1] as f64;
+                    }
+                }
+            }
+            let got = sums.sum(x0, y0, x1, y1);
+            assert_eq!(got[0], want[0]);
+            // Fixed point: at most half a unit (1/4096) of rounding per point.
+            for k in 1..3 {
+                assert!((got[k] - want[k]).abs() <= want[0] * 0.5 / 4096.0 + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn cursor_gathering_gives_the_windows_of_a_direct_scan() {
+        // Two overlapping squares: many edge points per row, windows clipped at the border.
+        let (w, h) = (48usize, 40usize);
+        let data = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                let a = (3..30).contains(&x) && (2..25).contains(&y);
+                let b = (18..46).contains(&x) && (12..38).contains(&y);
+                40.0 + 90.0 * a as u8 as f32 + 70.0 * b as u8 as f32
+            })
+            .collect();
+        let p = Params {
+            max_coherence: 1.0,
+            ..Params::default()
+        };
+        let edges = edge_map(&Gray::new(w, h, data), p.window, p.sigma, p.subpixel);
+        let got = candidates(&edges, &p);
+        let r = (p.window / 2) as isize;
+        let mut want = Vec::new();
+        for y in 0..h as isize {
+            for x in 0..w as isize {
+                if edges.mag[(y as usize) * w + x as usize] <= 0.0 {
+                    continue;
+                }
+                let mut win = Window::with_capacity(0);
+                for yy in (y - r).max(0)..=(y + r).min(h as isize - 1) {
+                    for xx in (x - r).max(0)..=(x + r).min(w as isize - 1) {
+                        let i = yy as usize * w + xx as usize;
+                        if edges.mag[i] > 0.0 {
+                            let o = edges.offset[i];
+                            let wt = (edges.mag[i] / edges.mean) as f64;
+                            win.push(
+                                xx as f64 + o[0] as f64 - x as f64,
+                                yy as f64 + o[1] as f64 - y as f64,
+                                wt * wt,
+                            );
+                        }
+                    }
+                }
+                if win.len() < p.window {
+                    continue;
+                }
+                if let Some(mut c) = evaluate(&mut win, r as f64, &p) {
+                    c.x += x as f64;
+                    c.y += y as f64;
+                    want.push(c);
+                }
+            }
+        }
+        assert!(want.len() >= 4, "{} candidates", want.len());
+        assert_eq!(got, want);
     }
 
     #[test]

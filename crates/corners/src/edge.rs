@@ -140,31 +140,26 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
         return empty;
     }
     let g = smooth(img, &gaussian_kernel(window, sigma));
-    // Central differences h_x = [1 0 -1], h_y = h_xᵗ (the sign does not matter for E).
-    let mut gx = vec![0f32; w * h];
-    let mut gy = vec![0f32; w * h];
+    // Central differences h_x = [1 0 -1], h_y = h_xᵗ (the sign does not matter for E). Only E
+    // is stored; the thinning below recomputes the two differences where it needs them, which
+    // is cheaper than writing and reading two more image-sized arrays.
+    let grad = |i: usize| (g.data[i + 1] - g.data[i - 1], g.data[i + w] - g.data[i - w]);
     let mut e = vec![0f32; w * h];
-    gx.par_chunks_mut(w)
-        .zip(gy.par_chunks_mut(w))
-        .zip(e.par_chunks_mut(w))
-        .enumerate()
-        .for_each(|(y, ((rx, ry), re))| {
-            if y == 0 || y == h - 1 {
-                return;
-            }
-            let (up, row, down) = (
-                &g.data[(y - 1) * w..y * w],
-                &g.data[y * w..(y + 1) * w],
-                &g.data[(y + 1) * w..(y + 2) * w],
-            );
-            for x in 1..w - 1 {
-                let dx = row[x + 1] - row[x - 1];
-                let dy = down[x] - up[x];
-                rx[x] = dx;
-                ry[x] = dy;
-                re[x] = dx * dx + dy * dy;
-            }
-        });
+    e.par_chunks_mut(w).enumerate().for_each(|(y, re)| {
+        if y == 0 || y == h - 1 {
+            return;
+        }
+        let (up, row, down) = (
+            &g.data[(y - 1) * w..y * w],
+            &g.data[y * w..(y + 1) * w],
+            &g.data[(y + 1) * w..(y + 2) * w],
+        );
+        for x in 1..w - 1 {
+            let dx = row[x + 1] - row[x - 1];
+            let dy = down[x] - up[x];
+            re[x] = dx * dx + dy * dy;
+        }
+    });
     // Mean of E over the N interior pixels (the text omits the pixels at the image edge).
     let n = ((w - 2) * (h - 2)) as f64;
     let mean = (e.par_iter().map(|&v| v as f64).sum::<f64>() / n) as f32;
@@ -191,7 +186,7 @@ pub fn edge_map(img: &Gray, window: usize, sigma: f64, subpixel: bool) -> EdgeMa
                 }
                 // Canny thinning: compare with the two neighbours along the gradient, the
                 // direction quantised to 0°, 45°, 90°, 135°.
-                let (dx, dy) = (gx[i], gy[i]);
+                let (dx, dy) = grad(i);
                 let (ax, ay) = (dx.abs(), dy.abs());
                 let (sx, sy): (isize, isize) = if ay <= ax * 0.414_213_56 {
                     (1, 0)

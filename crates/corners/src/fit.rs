@@ -37,18 +37,8 @@ impl Conic {
     /// matrix [[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]] whose determinant vanishes exactly for
     /// a pair of lines, which is the property §2.1.5 relies on.
     pub fn delta(&self) -> f64 {
-        let m = Matrix3::new(
-            self.a,
-            self.b / 2.0,
-            self.d / 2.0,
-            self.b / 2.0,
-            self.c,
-            self.e / 2.0,
-            self.d / 2.0,
-            self.e / 2.0,
-            self.f,
-        );
-        m.determinant()
+        let (b, d, e) = (self.b / 2.0, self.d / 2.0, self.e / 2.0);
+        det3(&[[self.a, b, d], [b, self.c, e], [d, e, self.f]])
     }
 
     /// Scaled so that b² − 4ac = 1 (the hyperbolic constraint of §2.1.2 with the sign of C in
@@ -84,70 +74,107 @@ impl Conic {
 /// normalised so that b² − 4ac = 1. None when the points do not determine a hyperbola (fewer
 /// than five points, collinear points, degenerate scatter).
 pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
-    if points.len() < 5 {
+    let mut mo = Moments::default();
+    for p in points {
+        mo.add(p[0] / scale, p[1] / scale, p[2] * p[2]);
+    }
+    fit_moments(&mo, scale)
+}
+
+/// The 15 weighted moments Σ w² xᵃ yᵇ (a + b ≤ 4) that make up the scatter S = MᵗM of eq. 2.3,
+/// with the number of points. Departure from §2.1.2 in form only: the fit is computed from these
+/// sums rather than from M, so a window's scatter costs 15 multiply-adds per point and no matrix.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Moments {
+    pub n: usize,
+    /// Indexed by `moment_index(a, b)`.
+    pub m: [f64; 15],
+}
+
+/// Position of Σ w² xᵃ yᵇ in [`Moments::m`] (by total degree, then by b).
+#[inline]
+pub const fn moment_index(a: usize, b: usize) -> usize {
+    let d = a + b;
+    d * (d + 1) / 2 + b
+}
+
+impl Moments {
+    /// Adds one point (coordinates already scaled) with squared weight `w2`.
+    #[inline(always)]
+    pub fn add(&mut self, x: f64, y: f64, w2: f64) {
+        let (wx, wy) = (w2 * x, w2 * y);
+        let (wx2, wxy, wy2) = (wx * x, wx * y, wy * y);
+        let (wx3, wx2y, wxy2, wy3) = (wx2 * x, wx2 * y, wy2 * x, wy2 * y);
+        let m = &mut self.m;
+        m[0] += w2;
+        m[1] += wx;
+        m[2] += wy;
+        m[3] += wx2;
+        m[4] += wxy;
+        m[5] += wy2;
+        m[6] += wx3;
+        m[7] += wx2y;
+        m[8] += wxy2;
+        m[9] += wy3;
+        m[10] += wx3 * x;
+        m[11] += wx3 * y;
+        m[12] += wx2y * y;
+        m[13] += wxy2 * y;
+        m[14] += wy3 * y;
+        self.n += 1;
+    }
+}
+
+/// The fit of [`fit_hyperbola`] from moments of points scaled by `1/scale`.
+///
+/// All 3 × 3 algebra is written out (adjugate inverse, Cholesky, triangular inverse) instead of
+/// going through general matrix routines: the same equations, at a fraction of the cost, which
+/// matters because every edge point's window is fitted (§2.1.2).
+pub fn fit_moments(mo: &Moments, scale: f64) -> Option<Conic> {
+    if mo.n < 5 {
         return None;
     }
     let s = 1.0 / scale;
-    // Scatter S = MᵗM: its entries are the 15 weighted moments Σ w² xᵃ yᵇ with a + b ≤ 4.
-    let mut mo = [0.0f64; 15];
-    for p in points {
-        let (x, y, w2) = (p[0] * s, p[1] * s, p[2] * p[2]);
-        let (x2, y2, xy) = (x * x, y * y, x * y);
-        let terms = [
-            1.0,
-            x,
-            y,
-            x2,
-            xy,
-            y2,
-            x2 * x,
-            x2 * y,
-            x * y2,
-            y2 * y,
-            x2 * x2,
-            x2 * xy,
-            x2 * y2,
-            xy * y2,
-            y2 * y2,
-        ];
-        for (m, t) in mo.iter_mut().zip(terms) {
-            *m += w2 * t;
-        }
-    }
-    // Moment index of xᵃ yᵇ.
-    let idx = |a: usize, b: usize| {
-        let d = a + b;
-        d * (d + 1) / 2 + b
-    };
     // Exponents of the monomials [x², xy, y², x, y, 1].
     const EXP: [(usize, usize); 6] = [(2, 0), (1, 1), (0, 2), (1, 0), (0, 1), (0, 0)];
-    let m: [[f64; 6]; 6] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| mo[idx(EXP[i].0 + EXP[j].0, EXP[i].1 + EXP[j].1)])
+    let at = |i: usize, j: usize| mo.m[moment_index(EXP[i].0 + EXP[j].0, EXP[i].1 + EXP[j].1)];
+    let s1: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| at(i, j)));
+    let s2: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| at(i, 3 + j)));
+    let s3: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| at(3 + i, 3 + j)));
+    let s3_inv = inverse3(&s3)?;
+    // α₂ = T α₁ with T = −S₃⁻¹ S₂ᵗ.
+    let t: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| -(0..3).map(|k| s3_inv[i][k] * s2[j][k]).sum::<f64>())
     });
-    let blk = |r0: usize, c0: usize| Matrix3::from_fn(|i, j| m[r0 + i][c0 + j]);
-    let s1 = blk(0, 0);
-    let s2 = blk(0, 3);
-    let s3 = blk(3, 3);
-    let s3_inv = s3.try_inverse()?;
-    let t = -s3_inv * s2.transpose(); // α₂ = T α₁
-    let r = s1 + s2 * t;
+    // R = S₁ + S₂ T, symmetrised.
+    let mut r: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| s1[i][j] + (0..3).map(|k| s2[i][k] * t[k][j]).sum::<f64>())
+    });
+    for (i, j) in [(1, 0), (2, 0), (2, 1)] {
+        let m = 0.5 * (r[i][j] + r[j][i]);
+        r[i][j] = m;
+        r[j][i] = m;
+    }
     // A tiny ridge keeps R positive definite when the points lie exactly on a conic (R is
     // then singular and its null vector is the answer, found as 1/λ → ∞).
-    let ridge = r.trace().abs() * 1e-12 + f64::MIN_POSITIVE;
-    let r = (r + r.transpose()) * 0.5 + Matrix3::identity() * ridge;
-    let chol = r.cholesky()?;
-    let l = chol.l();
-    let l_inv = l.try_inverse()?;
-    // C₁ of eq. 2.4 (its quadratic block): αᵗC α = b² − 4ac.
-    let c1 = Matrix3::new(0.0, 0.0, -2.0, 0.0, 1.0, 0.0, -2.0, 0.0, 0.0);
-    let k = l_inv * c1 * l_inv.transpose();
-    let k = (k + k.transpose()) * 0.5;
+    let ridge = (r[0][0] + r[1][1] + r[2][2]).abs() * 1e-12 + f64::MIN_POSITIVE;
+    for (i, row) in r.iter_mut().enumerate() {
+        row[i] += ridge;
+    }
+    let l = cholesky3(&r)?;
+    let li = lower_inverse3(&l)?;
+    // K = L⁻¹ C₁ L⁻ᵗ with C₁ of eq. 2.4 (its quadratic block, αᵗC α = b² − 4ac):
+    // C₁ = [[0, 0, −2], [0, 1, 0], [−2, 0, 0]].
+    let k = Matrix3::from_fn(|i, j| {
+        -2.0 * (li[i][0] * li[j][2] + li[i][2] * li[j][0]) + li[i][1] * li[j][1]
+    });
     let (mu, u) = largest_eigen(&k)?;
     if !(mu > 0.0) {
         return None;
     }
-    let a1 = l_inv.transpose() * u;
-    let a2 = t * a1;
+    // α₁ = L⁻ᵗ u.
+    let a1: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| li[k][i] * u[k]).sum());
+    let a2: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| t[i][k] * a1[k]).sum());
     // Back to input units: x_scaled = x / scale.
     let conic = Conic {
         a: a1[0] * s * s,
@@ -158,6 +185,59 @@ pub fn fit_hyperbola(points: &[[f64; 3]], scale: f64) -> Option<Conic> {
         f: a2[2],
     };
     conic.normalised()
+}
+
+fn det3(m: &[[f64; 3]; 3]) -> f64 {
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+
+/// Inverse by the adjugate; None when singular or not finite.
+fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let det = det3(m);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let c = |i: usize, j: usize| {
+        let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+        m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]
+    };
+    Some(std::array::from_fn(|i| {
+        std::array::from_fn(|j| c(j, i) * inv)
+    }))
+}
+
+/// Lower Cholesky factor of a symmetric positive definite 3 × 3 matrix.
+fn cholesky3(a: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let mut l = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..=i {
+            let s = a[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>();
+            if i == j {
+                if !(s > 0.0) {
+                    return None;
+                }
+                l[i][i] = s.sqrt();
+            } else {
+                l[i][j] = s / l[j][j];
+            }
+        }
+    }
+    Some(l)
+}
+
+/// Inverse of a lower-triangular 3 × 3 matrix with a positive diagonal.
+fn lower_inverse3(l: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let (d0, d1, d2) = (1.0 / l[0][0], 1.0 / l[1][1], 1.0 / l[2][2]);
+    if !(d0.is_finite() && d1.is_finite() && d2.is_finite()) {
+        return None;
+    }
+    let m10 = -l[1][0] * d0 * d1;
+    let m21 = -l[2][1] * d1 * d2;
+    let m20 = -(l[2][0] * d0 + l[2][1] * m10) * d2;
+    Some([[d0, 0.0, 0.0], [m10, d1, 0.0], [m20, m21, d2]])
 }
 
 /// Largest eigenvalue and its unit eigenvector of a symmetric 3 × 3 matrix, in closed form
@@ -206,8 +286,8 @@ pub struct Asymptotes {
     pub s: [f64; 2],
     /// Unit directions of the two asymptotes.
     pub v: [[f64; 2]; 2],
-    /// Rotation angle θ of eq. 2.6 (chosen so that a′ > 0).
-    pub theta: f64,
+    /// (cos θ, sin θ) of the rotation of eq. 2.6 (θ chosen so that a′ > 0).
+    pub rotation: [f64; 2],
     /// a′ > 0 and c′ < 0 of the standard position.
     pub a1: f64,
     pub c1: f64,
@@ -218,25 +298,38 @@ pub struct Asymptotes {
 
 impl Asymptotes {
     /// Closed form of eqs. 2.6–2.8 for a hyperbola (b² − 4ac > 0).
+    ///
+    /// Eq. 2.6 gives θ through cot 2θ; we take cos θ and sin θ from cos 2θ and sin 2θ by the
+    /// half-angle formulas instead of calling atan2 and sin/cos, which is the same rotation
+    /// (θ = ½ atan2(b, c − a), then a quarter turn when a′ < 0) without trigonometry.
     pub fn of(q: &Conic) -> Option<Self> {
-        // Eq. 2.6: cot 2θ = (c − a)/b.
-        let mut theta = 0.5 * q.b.atan2(q.c - q.a);
-        let prime = |th: f64| {
-            let (sn, cs) = th.sin_cos();
+        let rho = (q.b * q.b + (q.c - q.a) * (q.c - q.a)).sqrt();
+        let (c2, s2) = if rho > 0.0 {
+            ((q.c - q.a) / rho, q.b / rho)
+        } else {
+            (1.0, 0.0)
+        };
+        let (mut cs, mut sn) = if c2 >= 0.0 {
+            let cs = (0.5 * (1.0 + c2)).sqrt();
+            (cs, s2 / (2.0 * cs))
+        } else {
+            let sn = (0.5 * (1.0 - c2)).sqrt().copysign(s2);
+            (s2 / (2.0 * sn), sn)
+        };
+        let prime = |cs: f64, sn: f64| {
             let a1 = q.a * cs * cs - q.b * sn * cs + q.c * sn * sn;
             let c1 = q.a * sn * sn + q.b * sn * cs + q.c * cs * cs;
             (a1, c1)
         };
-        let (mut a1, mut c1) = prime(theta);
+        let (mut a1, mut c1) = prime(cs, sn);
         if a1 < 0.0 {
             // §2.1.3 asks for a′ > 0: a quarter turn swaps the axes.
-            theta += std::f64::consts::FRAC_PI_2;
-            (a1, c1) = prime(theta);
+            (cs, sn) = (-sn, cs);
+            (a1, c1) = prime(cs, sn);
         }
         if !(a1 > 0.0 && c1 < 0.0) {
             return None;
         }
-        let (sn, cs) = theta.sin_cos();
         let d1 = q.d * cs - q.e * sn;
         let e1 = q.d * sn + q.e * cs;
         // Eq. 2.7 gives the centre in the rotated frame; x = R(θ) x′ brings it back.
@@ -256,7 +349,7 @@ impl Asymptotes {
         Some(Self {
             s,
             v: [v1, v2],
-            theta,
+            rotation: [cs, sn],
             a1,
             c1,
             psi,
@@ -346,6 +439,67 @@ mod tests {
         // A multiple of the identity has no preferred vector but still an answer.
         let (mu, v) = largest_eigen(&(Matrix3::identity() * 3.0)).unwrap();
         assert!((mu - 3.0).abs() < 1e-12 && (v.norm() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn written_out_3x3_algebra_matches_nalgebra() {
+        let a = [[4.0, 1.2, -0.7], [1.2, 3.0, 0.4], [-0.7, 0.4, 2.5]];
+        let m = Matrix3::from_fn(|i, j| a[i][j]);
+        let inv = inverse3(&a).unwrap();
+        let want = m.try_inverse().unwrap();
+        let l = cholesky3(&a).unwrap();
+        let want_l = m.cholesky().unwrap().l();
+        let li = lower_inverse3(&l).unwrap();
+        let want_li = want_l.try_inverse().unwrap();
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((inv[i][j] - want[(i, j)]).abs() < 1e-12);
+                assert!((l[i][j] - want_l[(i, j)]).abs() < 1e-12);
+                assert!((li[i][j] - want_li[(i, j)]).abs() < 1e-12);
+            }
+        }
+        assert!((det3(&a) - m.determinant()).abs() < 1e-12);
+        assert!(inverse3(&[[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]]).is_none());
+        assert!(cholesky3(&[[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).is_none());
+    }
+
+    #[test]
+    fn half_angle_rotation_is_eq_2_6() {
+        // For conics at every orientation, (cos θ, sin θ) is the rotation with cot 2θ =
+        // (c − a)/b (up to the quarter turn that makes a′ > 0) and it diagonalises the
+        // quadratic part.
+        for k in 0..72 {
+            let phi = k as f64 * 5f64.to_radians();
+            let (sn, cs) = phi.sin_cos();
+            // x′²/4 − y′² = 1 with x′ along phi, centred at (0.3, −0.2).
+            let (a, c) = (0.25, -1.0);
+            let q = Conic {
+                a: a * cs * cs + c * sn * sn,
+                b: 2.0 * (a - c) * sn * cs,
+                c: a * sn * sn + c * cs * cs,
+                d: 0.0,
+                e: 0.0,
+                f: -1.0,
+            };
+            let (x0, y0) = (0.3, -0.2);
+            let q = Conic {
+                d: -2.0 * q.a * x0 - q.b * y0,
+                e: -2.0 * q.c * y0 - q.b * x0,
+                f: q.a * x0 * x0 + q.b * x0 * y0 + q.c * y0 * y0 - 1.0,
+                ..q
+            };
+            let h = Asymptotes::of(&q).unwrap();
+            let [cs, sn] = h.rotation;
+            assert!((cs * cs + sn * sn - 1.0).abs() < 1e-12);
+            let theta = sn.atan2(cs);
+            let want = 0.5 * q.b.atan2(q.c - q.a);
+            let turns = (theta - want) / std::f64::consts::FRAC_PI_2;
+            assert!((turns - turns.round()).abs() < 1e-9, "θ {theta} vs {want}");
+            let cross = 2.0 * (q.a - q.c) * sn * cs + q.b * (cs * cs - sn * sn);
+            assert!(cross.abs() < 1e-9, "{k}: off-diagonal {cross}");
+            assert!((h.s[0] - x0).abs() < 1e-9 && (h.s[1] - y0).abs() < 1e-9);
+            assert!((h.psi - 0.5f64.atan()).abs() < 1e-9);
+        }
     }
 
     #[test]
