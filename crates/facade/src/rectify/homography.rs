@@ -43,20 +43,34 @@ pub fn rectifying_homography(
     let h0 = m.try_inverse().ok_or_else(|| {
         FacadeError::NoVanishingPoints("the two vanishing points coincide".into())
     })? * t;
-    // The vanishing line must not cross the image: w keeps one sign over the corners.
+    // Where the vanishing line crosses the image, only the side holding the image centre can
+    // be rectified (the other side is "beyond the horizon"). Departure from §3.1.1, which
+    // assumes the line is outside: the image is clipped to the part where w keeps the centre's
+    // sign and is at least half the centre's |w| (past that, the local magnification grows as
+    // (w_c / w)³ and the output would be all stretch); the warp leaves the rest black.
     let corners = [
         (0.0, 0.0),
         (width as f64 - 1.0, 0.0),
-        (0.0, height as f64 - 1.0),
         (width as f64 - 1.0, height as f64 - 1.0),
+        (0.0, height as f64 - 1.0),
     ];
-    let ws: Vec<f64> = corners
-        .iter()
-        .map(|&(x, y)| (h0 * Vector3::new(x, y, 1.0))[2])
-        .collect();
-    if !(ws.iter().all(|w| *w > 1e-12) || ws.iter().all(|w| *w < -1e-12)) {
+    let w_at = |x: f64, y: f64| (h0 * Vector3::new(x, y, 1.0))[2];
+    let wc = w_at(cx, cy);
+    if wc.abs() < 1e-12 {
         return Err(FacadeError::NoVanishingPoints(
-            "the vanishing line crosses the image (the two line families are not a plane's horizontals and verticals)".into(),
+            "the vanishing line passes through the image centre (the two line families are not a plane's horizontals and verticals)".into(),
+        ));
+    }
+    let same_side = corners.iter().all(|&(x, y)| w_at(x, y) * wc.signum() > 1e-12);
+    let region: Vec<(f64, f64)> = if same_side {
+        corners.to_vec()
+    } else {
+        let keep = |p: (f64, f64)| w_at(p.0, p.1) * wc.signum() - 0.5 * wc.abs();
+        clip_polygon(&corners, keep)
+    };
+    if region.len() < 3 {
+        return Err(FacadeError::NoVanishingPoints(
+            "the vanishing line leaves too little of the image to rectify".into(),
         ));
     }
     // Local scale at the centre along each family.
@@ -92,7 +106,7 @@ pub fn rectifying_homography(
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         );
-        for &(x, y) in &corners {
+        for &(x, y) in &region {
             let (u, v) = apply(h, x, y)?;
             b = (b.0.min(u), b.1.min(v), b.2.max(u), b.3.max(v));
         }
@@ -117,7 +131,26 @@ pub fn rectifying_homography(
     Ok((h, ow, oh))
 }
 
-/// Bilinear warp: each output pixel samples the input at H⁻¹ p; outside pixels are black.
+/// The part of a convex polygon where `f ≥ 0` (`f` affine along edges), by Sutherland–Hodgman.
+fn clip_polygon(poly: &[(f64, f64)], f: impl Fn((f64, f64)) -> f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for (i, &a) in poly.iter().enumerate() {
+        let b = poly[(i + 1) % poly.len()];
+        let (fa, fb) = (f(a), f(b));
+        if fa >= 0.0 {
+            out.push(a);
+        }
+        if (fa >= 0.0) != (fb >= 0.0) {
+            let t = fa / (fa - fb);
+            out.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+        }
+    }
+    out
+}
+
+/// Bilinear warp: each output pixel samples the input at H⁻¹ p; outside pixels are black, and
+/// so are pixels whose source lies beyond the vanishing line (on the other side of it from the
+/// image centre), which a projective map would otherwise fold back into the output.
 pub fn warp(img: &RgbImage, h: &Matrix3<f64>, out_w: u32, out_h: u32) -> Result<RgbImage> {
     let hi = h
         .try_inverse()
@@ -130,11 +163,17 @@ pub fn warp(img: &RgbImage, h: &Matrix3<f64>, out_w: u32, out_h: u32) -> Result<
             need: "the image to warp is empty".into(),
         });
     }
+    let centre_side = (h * Vector3::new((w as f64 - 1.0) / 2.0, (hgt as f64 - 1.0) / 2.0, 1.0))[2];
     let mut buf = vec![0u8; out_w as usize * out_h as usize * 3];
     buf.par_chunks_mut(out_w as usize * 3)
         .enumerate()
         .for_each(|(y, row)| {
             for x in 0..out_w as usize {
+                // H (u, v, 1) = (x, y, 1) / c for (u, v, 1) c = H⁻¹ (x, y, 1): the source's w is 1 / c.
+                let c = (hi * Vector3::new(x as f64, y as f64, 1.0))[2];
+                if c * centre_side <= 0.0 {
+                    continue;
+                }
                 let Some((u, v)) = apply(&hi, x as f64, y as f64) else {
                     continue;
                 };
@@ -182,8 +221,39 @@ mod tests {
     }
 
     #[test]
-    fn vanishing_line_through_the_image_is_an_error() {
-        let r = rectifying_homography(&[50.0, 20.0, 1.0], &[10.0, 30.0, 1.0], 64, 48, 4.0);
-        assert!(matches!(r, Err(FacadeError::NoVanishingPoints(_))));
+    fn vanishing_line_through_the_centre_is_an_error() {
+        // Both vanishing points on the line y = x·(23.5/31.5) through the centre (31.5, 23.5).
+        let r = rectifying_homography(&[63.0, 47.0, 1.0], &[-63.0, -47.0, 1.0], 64, 48, 4.0);
+        assert!(matches!(r, Err(FacadeError::NoVanishingPoints(_))), "{r:?}");
+    }
+
+    #[test]
+    fn vanishing_line_through_the_image_keeps_the_centres_side() {
+        // Looking steeply up a tower: the verticals meet at (32, 5), inside the image, and the
+        // horizontals far right on the same row, so the vanishing line y = 5 crosses the image
+        // near its top. The rows below it are rectified, the rows above it are not.
+        let (vh, vv) = ([2000.0, 5.0, 1.0], [32.0, 5.0, 1.0]);
+        let (h, w, hh) = rectifying_homography(&vh, &vv, 64, 48, 4.0).unwrap();
+        assert!(w > 4 && hh > 4);
+        let img = RgbImage::from_pixel(64, 48, image::Rgb([200, 100, 50]));
+        let out = warp(&img, &h, w, hh).unwrap();
+        let lit = out.pixels().filter(|p| p[0] > 0).count();
+        assert!(lit > 0, "the centre's side is warped");
+        // Every lit output pixel comes from below the line.
+        let hi = h.try_inverse().unwrap();
+        for (x, y, p) in out.enumerate_pixels() {
+            if p[0] > 0 {
+                let (_, v) = apply(&hi, x as f64, y as f64).unwrap();
+                assert!(v > 5.0, "({x}, {y}) samples row {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn clipping_keeps_the_positive_side() {
+        let square = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)];
+        let half = clip_polygon(&square, |p| p.1 - 1.0);
+        assert_eq!(half, vec![(2.0, 1.0), (2.0, 2.0), (0.0, 2.0), (0.0, 1.0)]);
+        assert!(clip_polygon(&square, |p| -p.0 - 1.0).is_empty());
     }
 }
