@@ -13,6 +13,19 @@ fn castellan() -> Command {
     Command::cargo_bin("castellan").unwrap()
 }
 
+/// `castellan vsg run PROGRAM -o OUTPUT`, ready for more flags.
+fn vsg_run(program: &Path, output: &Path) -> Command {
+    let mut c = castellan();
+    c.args(["vsg", "run"]).arg(program).arg("-o").arg(output);
+    c
+}
+
+/// Stderr of a failed run.
+fn failure_message(c: &mut Command) -> String {
+    let out = c.assert().failure();
+    String::from_utf8_lossy(&out.get_output().stderr).into_owned()
+}
+
 #[test]
 fn runs_rules_7_3_and_writes_every_output() {
     let dir = tempfile::tempdir().unwrap();
@@ -61,14 +74,7 @@ fn same_seed_gives_identical_files() {
     std::fs::write(&src, "Axiom::I(\"box\",{20,1,1}){r};\nr::repeat(\"X\",{1}){s};\ns::{a}:0.5;\ns::{b}:0.5;\na::{j3d.terminal};\nb::appearance(\"color\",{1,0,0}){j3d.terminal};").unwrap();
     let out = |name: &str, seed: &str| {
         let p = dir.path().join(name);
-        castellan()
-            .args(["vsg", "run"])
-            .arg(&src)
-            .arg("-o")
-            .arg(&p)
-            .args(["--seed", seed])
-            .assert()
-            .success();
+        vsg_run(&src, &p).args(["--seed", seed]).assert().success();
         std::fs::read(p).unwrap()
     };
     assert_eq!(out("a.glb", "3"), out("b.glb", "3"));
@@ -109,14 +115,7 @@ fn syntax_error_exits_non_zero_with_line_column_and_writes_nothing() {
     )
     .unwrap();
     let glb = dir.path().join("m.glb");
-    let out = castellan()
-        .args(["vsg", "run"])
-        .arg(&src)
-        .arg("-o")
-        .arg(&glb)
-        .assert()
-        .failure();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let stderr = failure_message(&mut vsg_run(&src, &glb));
     assert!(stderr.contains("bad.vsg:2:17:"), "{stderr}");
     assert!(!glb.exists());
     assert_eq!(
@@ -129,12 +128,11 @@ fn syntax_error_exits_non_zero_with_line_column_and_writes_nothing() {
 #[test]
 fn missing_program_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
-    let out = castellan()
-        .args(["vsg", "run", "nowhere.vsg", "-o"])
-        .arg(dir.path().join("m.glb"))
-        .assert()
-        .failure();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let stderr = failure_message(
+        &mut castellan()
+            .args(["vsg", "run", "nowhere.vsg", "-o"])
+            .arg(dir.path().join("m.glb")),
+    );
     assert!(stderr.contains("cannot read nowhere.vsg"), "{stderr}");
 }
 
@@ -148,15 +146,7 @@ fn runaway_grammar_stops_at_max_depth() {
     )
     .unwrap();
     let glb = dir.path().join("m.glb");
-    let out = castellan()
-        .args(["vsg", "run"])
-        .arg(&src)
-        .arg("-o")
-        .arg(&glb)
-        .args(["--max-depth", "20"])
-        .assert()
-        .failure();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let stderr = failure_message(&mut vsg_run(&src, &glb).args(["--max-depth", "20"]));
     assert!(
         stderr.contains("loop.vsg:2:1: production went deeper than 20 levels"),
         "{stderr}"
@@ -173,15 +163,14 @@ fn runaway_repeat_stops_at_max_shapes() {
         "Axiom::I(\"box\",{1,1,1}){A};\nA::repeat(\"X\",{0.0001}){B};\nB::{j3d.terminal};",
     )
     .unwrap();
-    let out = castellan()
-        .args(["vsg", "run"])
-        .arg(&src)
-        .arg("-o")
-        .arg(dir.path().join("m.glb"))
-        .args(["--max-shapes", "5000"])
-        .assert()
-        .failure();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let stderr = failure_message(
+        &mut castellan()
+            .args(["vsg", "run"])
+            .arg(&src)
+            .arg("-o")
+            .arg(dir.path().join("m.glb"))
+            .args(["--max-shapes", "5000"]),
+    );
     assert!(
         stderr.contains(
             "many.vsg:2:4: repeat would create 10002 shapes, more than the limit of 4998"
@@ -260,14 +249,7 @@ fn unreadable_texture_names_the_file_and_the_rule() {
     )
     .unwrap();
     let glb = dir.path().join("t.glb");
-    let run = || {
-        castellan()
-            .args(["vsg", "run"])
-            .arg(&program)
-            .arg("-o")
-            .arg(&glb)
-            .assert()
-    };
+    let run = || vsg_run(&program, &glb).assert();
     let out = run().failure();
     let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(
@@ -295,14 +277,7 @@ fn textures_are_embedded_in_the_glb() {
     )
     .unwrap();
     let glb = dir.path().join("wall.glb");
-    let run = || {
-        castellan()
-            .args(["vsg", "run"])
-            .arg(&program)
-            .arg("-o")
-            .arg(&glb)
-            .assert()
-    };
+    let run = || vsg_run(&program, &glb).assert();
     let out = run().failure();
     let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(
