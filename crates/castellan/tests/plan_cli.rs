@@ -167,3 +167,62 @@ fn batch_of_an_empty_folder_is_an_error() {
     let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(err.contains("no files"), "{err}");
 }
+
+#[test]
+fn scale_bar_gives_metres_per_pixel_and_its_absence_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    // A square enclosure with a round tower, on clean paper (no grid lines to touch the bar).
+    let mut canvas = plan::synth::Canvas::new(600, 450);
+    canvas.poly(
+        &[(150.0, 80.0), (450.0, 80.0), (450.0, 330.0), (150.0, 330.0)],
+        10.0,
+    );
+    canvas.round_tower((450.0, 80.0), 30.0, 9.0);
+    let mut castle = canvas.0;
+    let with_bar = dir.path().join("with_bar.png");
+    castle.save(dir.path().join("no_bar.png")).unwrap();
+    // A 200-px ruled bar with ticks every 40 px, below the castle.
+    for x in 50..250u32 {
+        castle.put_pixel(x, 420, image::Luma([0]));
+        if (x - 50) % 40 == 0 || x == 249 {
+            for y in 414..=420 {
+                castle.put_pixel(x, y, image::Luma([0]));
+            }
+        }
+    }
+    castle.save(&with_bar).unwrap();
+    let json = dir.path().join("plan.json");
+    let assert = castellan()
+        .arg("plan")
+        .arg(&with_bar)
+        .arg("-o")
+        .arg(&json)
+        .args(["--scale-bar", "40"])
+        .assert()
+        .success();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(err.contains("200 px = 40 m"), "{err}");
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert!(
+        (doc["scale"].as_f64().unwrap() - 0.2).abs() < 1e-9,
+        "{}",
+        doc["scale"]
+    );
+    assert_eq!(doc["scale_bar"]["length_px"], 200);
+
+    let json2 = dir.path().join("plan2.json");
+    let assert = castellan()
+        .arg("plan")
+        .arg(dir.path().join("no_bar.png"))
+        .arg("-o")
+        .arg(&json2)
+        .args(["--scale-bar", "40"])
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(
+        err.contains("no_bar.png") && err.contains("no drawn scale bar"),
+        "{err}"
+    );
+    assert!(!json2.exists());
+}

@@ -293,13 +293,13 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
         return Err(PlanError::NoWalls(pre.threshold));
     }
     if opts.close_gaps {
-        // Half the wall thickness, so gaps up to about one thickness close; bounded so that a
-        // drawing of huge black masses cannot weld the whole castle into one blob.
+        // Radius T / 3 for the typical wall thickness T, so gaps up to about two thirds of a
+        // thickness close; bounded by 1/150 of the long side so that a drawing of huge black
+        // masses cannot weld the whole castle into one blob. Both were chosen on the
+        // development set: T / 2, T / 3, T / 4 and caps 1/100 … 1/500 (docs/plan.md).
         let t = binarize::wall_thickness(&bin);
-        // The cap, 1/150 of the long side, was the best of 1/100, 1/150, 1/200, 1/300 and 1/500
-        // on the development set (docs/plan.md).
         let cap = (w.max(h) / 150).clamp(1, 12) as f64;
-        binarize::close_gaps(&mut bin, (t / 2.0).ceil().min(cap) as u8);
+        binarize::close_gaps(&mut bin, (t / 3.0).ceil().min(cap) as u8);
     }
     let walls = Mask::from_gray(&bin);
     let mut skel = walls.clone();
