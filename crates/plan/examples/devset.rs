@@ -93,7 +93,7 @@ fn all_plans(data: &std::path::Path, opts: &plan::Options) {
         times[times.len() / 2],
         times[times.len() - 1]
     );
-    kinds.sort_by(|a, b| b.1.cmp(&a.1));
+    kinds.sort_by_key(|k| std::cmp::Reverse(k.1));
     for (k, n) in kinds {
         println!("  {n:4}  {k}");
     }

@@ -186,7 +186,7 @@ pub fn table(scores: &[PlanScore]) -> String {
             None => pairs.push((*c, 1)),
         }
     }
-    pairs.sort_by(|a, b| b.1.cmp(&a.1));
+    pairs.sort_by_key(|p| std::cmp::Reverse(p.1));
     out.push_str("\nMost frequent errors (true → found): ");
     let listed: Vec<String> = pairs
         .iter()

@@ -35,9 +35,7 @@ pub fn find(grey: &GrayImage) -> Option<ScaleBar> {
     }
     let bin = binarize(grey, threshold_level(grey));
     let comps = regions(&bin);
-    let Some(castle) = comps.iter().max_by_key(|c| c.pixels.len()) else {
-        return None;
-    };
+    let castle = comps.iter().max_by_key(|c| c.pixels.len())?;
     let cb = castle.bbox;
     let min_width = (f64::from(w) * 0.06).max(12.0) as u32;
     let mut best: Option<ScaleBar> = None;
