@@ -1,6 +1,7 @@
 //! `castellan`: the command-line front end. It parses arguments, reads inputs, calls the
 //! library crates and writes outputs atomically; the work itself lives in the libraries.
 
+mod batch_cmd;
 mod cli;
 mod corners_cmd;
 mod demo_cmd;

@@ -13,15 +13,39 @@ use crate::output::Outputs;
 use crate::images::png;
 
 pub fn run(args: &PlanArgs) -> Result<()> {
-    let file = args.image.display().to_string();
-    let img = crate::images::read_image(&args.image)?;
+    let image = match (&args.batch, &args.image) {
+        (Some(dir), _) => {
+            return crate::batch_cmd::run(dir, &args.output, args.scale, &plan::Options::default());
+        }
+        (None, Some(image)) => image,
+        (None, None) => return Err(anyhow!("give a plan drawing or --batch DIR")),
+    };
+    let file = image.display().to_string();
+    let img = crate::images::read_image(image)?;
     let started = Instant::now();
     let parsed =
         plan::parse(&img, &plan::Options::default()).map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
+    let scale = match args.scale_bar {
+        None => args.scale,
+        Some(metres) => {
+            let bar = parsed.scale_bar.ok_or_else(|| {
+                anyhow!("{file}: no drawn scale bar found (a straight horizontal ruled line); give --scale METRES_PER_PIXEL instead")
+            })?;
+            let s = bar.scale(metres);
+            eprintln!(
+                "{file}: scale bar from ({}, {y}) to ({}, {y}), {} px = {metres} m: {s:.4} m per pixel",
+                bar.x0,
+                bar.x1,
+                bar.length_px,
+                y = bar.y
+            );
+            Some(s)
+        }
+    };
 
     let mut outputs = Outputs::default();
-    let doc = plan::output::plan_json(&parsed, args.scale);
+    let doc = plan::output::plan_json(&parsed, scale);
     outputs.add(&args.output, serde_json::to_vec_pretty(&doc)?);
     if let Some(path) = &args.labels {
         outputs.add(path, png(&plan::output::labels_image(&parsed), path)?);
@@ -35,7 +59,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     }
     if let Some(path) = &args.model {
         // Without a scale, heights are in pixels: 1 m taken as 1/100 of the castle's size.
-        let (scale, heights) = match args.scale {
+        let (scale, heights) = match scale {
             Some(s) => (s, plan::extrude::Heights::metres()),
             None => {
                 let size = f64::from(parsed.width.max(parsed.height));
@@ -78,8 +102,15 @@ pub fn run(args: &PlanArgs) -> Result<()> {
 #[derive(Debug, Args)]
 pub struct PlanArgs {
     /// The plan drawing (PNG, JPEG or PNM).
-    pub image: PathBuf,
-    /// The parsed plan: vertices, labelled edges with fits, labelled faces with shapes.
+    #[arg(required_unless_present = "batch")]
+    pub image: Option<PathBuf>,
+    /// Parse every drawing in this folder instead (in parallel); `-o` is then the output
+    /// folder, which receives NAME.plan.json, NAME.labels.png, NAME.overlay.png, NAME.svg
+    /// per drawing and summary.csv (one row per file, failures with their reason).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["image", "labels", "svg", "model", "overlay"])]
+    pub batch: Option<PathBuf>,
+    /// The parsed plan: vertices, labelled edges with fits, labelled faces with shapes
+    /// (with --batch: the output folder).
     #[arg(short = 'o', long = "output", value_name = "PLAN.json")]
     pub output: PathBuf,
     /// 8-bit image of label indices (the legend of PLAN.json).
@@ -97,6 +128,10 @@ pub struct PlanArgs {
     /// Drawing scale in metres per pixel; the model comes out in metres.
     #[arg(long, value_parser = parse_scale)]
     pub scale: Option<f64>,
+    /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
+    /// and the scale (metres per pixel) follows from its length in pixels.
+    #[arg(long, value_name = "METRES", value_parser = parse_scale, conflicts_with_all = ["scale", "batch"])]
+    pub scale_bar: Option<f64>,
 }
 
 fn parse_scale(s: &str) -> Result<f64, String> {
@@ -133,7 +168,34 @@ mod flag_tests {
         assert!(Cli::try_parse_from(["castellan", "plan", "p.png"]).is_err());
         let a = plan_args(&[]).unwrap();
         assert_eq!(a.output, PathBuf::from("plan.json"));
-        assert_eq!(a.image, PathBuf::from("p.png"));
+        assert_eq!(a.image, Some(PathBuf::from("p.png")));
+    }
+
+    #[test]
+    fn plan_batch_flag_takes_a_folder_instead_of_an_image() {
+        let a = Cli::try_parse_from(["castellan", "plan", "--batch", "in", "-o", "out"]).unwrap();
+        match a.command {
+            Command::Plan(a) => {
+                assert_eq!(a.batch, Some(PathBuf::from("in")));
+                assert_eq!(a.image, None);
+            }
+            _ => unreachable!("plan parsed as another command"),
+        }
+        assert!(Cli::try_parse_from(["castellan", "plan", "-o", "out"]).is_err());
+        assert!(plan_args(&["--batch", "in"]).is_err());
+        assert!(
+            Cli::try_parse_from([
+                "castellan",
+                "plan",
+                "--batch",
+                "in",
+                "-o",
+                "o",
+                "--svg",
+                "s"
+            ])
+            .is_err()
+        );
     }
 
     #[test]
@@ -175,5 +237,16 @@ mod flag_tests {
         assert!(plan_args(&["--scale", "0"]).is_err());
         assert!(plan_args(&["--scale", "-1"]).is_err());
         assert!(plan_args(&["--scale", "nan"]).is_err());
+    }
+
+    #[test]
+    fn plan_scale_bar_flag_is_positive_and_excludes_scale() {
+        assert_eq!(plan_args(&[]).unwrap().scale_bar, None);
+        assert_eq!(
+            plan_args(&["--scale-bar", "30"]).unwrap().scale_bar,
+            Some(30.0)
+        );
+        assert!(plan_args(&["--scale-bar", "0"]).is_err());
+        assert!(plan_args(&["--scale-bar", "30", "--scale", "0.1"]).is_err());
     }
 }

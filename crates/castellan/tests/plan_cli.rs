@@ -107,3 +107,122 @@ fn unreadable_image_names_the_file() {
     let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(err.contains("notes.png"), "{err}");
 }
+
+#[test]
+fn batch_parses_the_good_drawing_and_reports_the_two_bad_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir(&input).unwrap();
+    // The synthetic castle has six towers (plan::synth::castle).
+    let (castle, _) = plan::synth::castle(3, 0.5, 600, 450);
+    castle.save(input.join("castle.png")).unwrap();
+    image::GrayImage::from_pixel(120, 80, image::Luma([250]))
+        .save(input.join("blank.png"))
+        .unwrap();
+    std::fs::write(input.join("notes.txt"), b"not an image").unwrap();
+    let out = dir.path().join("out");
+    let assert = castellan()
+        .args(["plan", "--batch"])
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(err.contains("3 drawings: 1 parsed"), "{err}");
+
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.splitn(8, ',').collect()).collect();
+    assert_eq!(
+        rows[0].join(","),
+        "file,success,closed_outer_wall,faces,towers,labels_found,time_ms,failure_reason"
+    );
+    assert_eq!(rows.len(), 4, "{csv}");
+    // Sorted by name: blank.png, castle.png, notes.txt.
+    assert_eq!(&rows[1][..3], &["blank.png", "false", "false"]);
+    assert!(rows[1][7].contains("no walls"), "{csv}");
+    assert_eq!(&rows[2][..3], &["castle.png", "true", "true"]);
+    let towers: usize = rows[2][4].parse().unwrap();
+    assert_eq!(towers, 6, "{csv}");
+    assert!(rows[2][5].parse::<usize>().unwrap() >= 5, "{csv}");
+    assert_eq!(&rows[3][..2], &["notes.txt", "false"]);
+    assert!(rows[3][7].contains("not a readable image"), "{csv}");
+
+    for suffix in ["plan.json", "labels.png", "overlay.png", "svg"] {
+        assert!(out.join(format!("castle.{suffix}")).exists(), "{suffix}");
+        assert!(!out.join(format!("blank.{suffix}")).exists(), "{suffix}");
+    }
+}
+
+#[test]
+fn batch_of_an_empty_folder_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let assert = castellan()
+        .args(["plan", "--batch"])
+        .arg(dir.path())
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(err.contains("no files"), "{err}");
+}
+
+#[test]
+fn scale_bar_gives_metres_per_pixel_and_its_absence_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    // A square enclosure with a round tower, on clean paper (no grid lines to touch the bar).
+    let mut canvas = plan::synth::Canvas::new(600, 450);
+    canvas.poly(
+        &[(150.0, 80.0), (450.0, 80.0), (450.0, 330.0), (150.0, 330.0)],
+        10.0,
+    );
+    canvas.round_tower((450.0, 80.0), 30.0, 9.0);
+    let mut castle = canvas.0;
+    let with_bar = dir.path().join("with_bar.png");
+    castle.save(dir.path().join("no_bar.png")).unwrap();
+    // A 200-px ruled bar with ticks every 40 px, below the castle.
+    for x in 50..250u32 {
+        castle.put_pixel(x, 420, image::Luma([0]));
+        if (x - 50) % 40 == 0 || x == 249 {
+            for y in 414..=420 {
+                castle.put_pixel(x, y, image::Luma([0]));
+            }
+        }
+    }
+    castle.save(&with_bar).unwrap();
+    let json = dir.path().join("plan.json");
+    let assert = castellan()
+        .arg("plan")
+        .arg(&with_bar)
+        .arg("-o")
+        .arg(&json)
+        .args(["--scale-bar", "40"])
+        .assert()
+        .success();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(err.contains("200 px = 40 m"), "{err}");
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert!(
+        (doc["scale"].as_f64().unwrap() - 0.2).abs() < 1e-9,
+        "{}",
+        doc["scale"]
+    );
+    assert_eq!(doc["scale_bar"]["length_px"], 200);
+
+    let json2 = dir.path().join("plan2.json");
+    let assert = castellan()
+        .arg("plan")
+        .arg(dir.path().join("no_bar.png"))
+        .arg("-o")
+        .arg(&json2)
+        .args(["--scale-bar", "40"])
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(
+        err.contains("no_bar.png") && err.contains("no drawn scale bar"),
+        "{err}"
+    );
+    assert!(!json2.exists());
+}

@@ -1,13 +1,17 @@
 //! Wall-pixel agreement with the R3D / DeepFloorplan wall masks (research data, read from
 //! `../shared/data`, never copied): for each plan, precision, recall and IoU of the pixels
 //! labelled as walls against `<id>_wall.png`, and whether a courtyard (closed outer wall) was
-//! found. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT]`.
+//! found. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps]`.
 
 use std::path::PathBuf;
 
 fn main() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
+    let opts = plan::Options {
+        close_gaps: !std::env::args().any(|a| a == "--no-close-gaps"),
+        ..Default::default()
+    };
     let limit: usize = std::env::args()
         .nth(1)
         .and_then(|s| s.parse().ok())
@@ -31,7 +35,7 @@ fn main() {
             .unwrap()
             .to_luma8();
         let t = std::time::Instant::now();
-        let p = match plan::parse(&img, &plan::Options::default()) {
+        let p = match plan::parse(&img, &opts) {
             Ok(p) => p,
             Err(e) => {
                 println!("{id}\terror: {e}");

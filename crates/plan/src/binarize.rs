@@ -197,6 +197,44 @@ pub fn preprocess(grey: &GrayImage, min_region: f64) -> (GrayImage, PreStats) {
     (img, stats)
 }
 
+/// Typical wall thickness in pixels: for a strip of thickness T the mean distance from its
+/// pixels to the nearest open pixel is about T / 4 (chessboard distance), so T ≈ 4 × mean.
+pub fn wall_thickness(bin: &GrayImage) -> f64 {
+    let inverted = GrayImage::from_fn(bin.width(), bin.height(), |x, y| {
+        Luma([255 - bin.get_pixel(x, y)[0]])
+    });
+    let dist = imageproc::distance_transform::distance_transform(&inverted, Norm::LInf);
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (d, b) in dist.pixels().zip(bin.pixels()) {
+        if b[0] == 255 {
+            sum += f64::from(d[0]);
+            n += 1;
+        }
+    }
+    if n == 0 { 0.0 } else { 4.0 * sum / n as f64 }
+}
+
+/// Closes door and gate gaps narrower than the walls are thick (issue 11; §5.2 item 4 names
+/// open enclosures as a cause of failure and §5.1.1 leaves closing them to the user): a
+/// morphological closing with a square of half-side `radius`, which bridges gaps up to
+/// 2 × `radius` + 1 pixels wide and leaves isolated walls as they are. A variant that filled
+/// only pixels with walls on both sides along a row, column or diagonal (keeping concave
+/// corners sharp) was measured worse on the development set (docs/plan.md). Returns the
+/// pixels added.
+pub fn close_gaps(img: &mut GrayImage, radius: u8) -> usize {
+    if radius == 0 {
+        return 0;
+    }
+    let closed = close(img, Norm::LInf, radius);
+    let added = closed
+        .pixels()
+        .zip(img.pixels())
+        .filter(|(c, o)| c[0] == 255 && o[0] == 0)
+        .count();
+    *img = closed;
+    added
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,6 +274,25 @@ mod tests {
         assert_eq!(img.get_pixel(10, 15)[0], 0);
         assert_eq!(img.get_pixel(29, 18)[0], 0);
         assert_eq!(stats.wall_pixels, 26 * 6);
+    }
+
+    #[test]
+    fn a_door_narrower_than_the_wall_closes_a_wider_passage_stays() {
+        // A 6-px wall with a 4-px door and a 14-px passage.
+        let mut rows = vec![String::from("........................................"); 12];
+        for r in rows.iter_mut().skip(3).take(6) {
+            r.replace_range(0..40, &"#".repeat(40));
+            r.replace_range(10..14, "....");
+            r.replace_range(22..36, &".".repeat(14));
+        }
+        let refs: Vec<&str> = rows.iter().map(|s| s.as_str()).collect();
+        let mut img = binarize(&grey_from(&refs), 128);
+        let t = wall_thickness(&img);
+        assert!((4.0..=8.0).contains(&t), "{t}");
+        let added = close_gaps(&mut img, (t / 2.0).ceil() as u8);
+        assert_eq!(img.get_pixel(12, 5)[0], 255);
+        assert_eq!(img.get_pixel(29, 5)[0], 0);
+        assert!(added >= 4 * 6);
     }
 
     #[test]

@@ -29,6 +29,7 @@ pub fn plan_json(p: &ParsedPlan, scale: Option<f64>) -> Value {
         "scale": scale,
         "legend": legend(),
         "towers": p.towers,
+        "scale_bar": p.scale_bar,
         "warnings": p.warnings,
         "preprocessing": p.pre,
         "vertices": p.vertices.iter().enumerate().map(|(i, v)| json!({"id": i, "x": v.x, "y": v.y})).collect::<Vec<_>>(),
