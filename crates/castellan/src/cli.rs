@@ -33,6 +33,8 @@ pub enum Command {
     Rectify(crate::rectify_cmd::RectifyArgs),
     /// Parse a rectified façade into façades, floors and windows (dissertation §3.1.2-3.1.7).
     Facade(crate::facade_cmd::FacadeArgs),
+    /// Gothic façade: arches and rectangles, groups, nesting, masonry (dissertation ch. 4).
+    Gothic(crate::gothic_cmd::GothicArgs),
 }
 
 #[derive(Debug, Subcommand)]
