@@ -19,7 +19,9 @@ fn bench(c: &mut Criterion) {
     let est = organise(&dt, found.clone(), &p);
     let masonry = segment(&s.image, &est, &MasonryParams::default());
     if let Ok(path) = std::env::var("GOTHIC_BENCH_IMAGE") {
-        s.image.save(path).expect("GOTHIC_BENCH_IMAGE: cannot write the picture");
+        s.image
+            .save(path)
+            .expect("GOTHIC_BENCH_IMAGE: cannot write the picture");
     }
     let recovered = s
         .elements
