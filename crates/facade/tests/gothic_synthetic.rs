@@ -137,8 +137,6 @@ fn masonry_around_elements_and_the_vsg_model() {
         if is_wall {
             wall += 1;
             right += usize::from((*l == 1) == mortar && *l != 0);
-        } else if !is_wall {
-            // Elements (and their 2 px margin) are never wall in the estimate's own mask too.
         }
     }
     let accuracy = right as f64 / wall as f64;
