@@ -31,6 +31,8 @@ pub enum Command {
     Rectify(crate::rectify_cmd::RectifyArgs),
     /// Parse a rectified façade into façades, floors and windows (dissertation §3.1.2-3.1.7).
     Facade(crate::facade_cmd::FacadeArgs),
+    /// Gothic façade: arches and rectangles, groups, nesting, masonry (dissertation ch. 4).
+    Gothic(crate::gothic_cmd::GothicArgs),
     /// Plan drawing + façade photos (PROJECT.toml) → integrated estimate → VSG program → model,
     /// with every step's overlay in an HTML report (dissertation ch. 6, §7.2.2–7.2.3).
     Reconstruct(crate::reconstruct_cmd::ReconstructArgs),

@@ -6,6 +6,7 @@ mod cli;
 mod corners_cmd;
 mod demo_cmd;
 mod facade_cmd;
+mod gothic_cmd;
 mod images;
 mod output;
 mod plan_cmd;
@@ -27,6 +28,7 @@ fn main() -> ExitCode {
         cli::Command::Plan(args) => plan_cmd::run(&args),
         cli::Command::Rectify(args) => rectify_cmd::run(&args),
         cli::Command::Facade(args) => facade_cmd::run(&args),
+        cli::Command::Gothic(args) => gothic_cmd::run(&args),
         cli::Command::Reconstruct(args) => reconstruct_cmd::run(&args),
         cli::Command::Demo(args) => demo_cmd::run(&args),
     };

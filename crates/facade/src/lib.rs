@@ -45,6 +45,7 @@
 pub mod classify;
 pub mod error;
 pub mod eval;
+pub mod gothic;
 pub mod model;
 pub mod rectify;
 pub mod search;

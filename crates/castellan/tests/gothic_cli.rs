@@ -1,0 +1,119 @@
+//! `castellan gothic` as a user runs it: every output on a synthetic Gothic façade, an empty
+//! result on a blank wall, and one clear message naming the file (and no output) on bad input.
+
+use assert_cmd::Command;
+use facade::gothic::synth::{Bay, SynthSpec, synthetic_facade};
+use image::{Rgb, RgbImage};
+
+fn castellan() -> Command {
+    Command::cargo_bin("castellan").unwrap()
+}
+
+#[test]
+fn gothic_writes_json_masonry_overlay_and_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = SynthSpec {
+        width: 300,
+        height: 400,
+        bays: vec![Bay {
+            windows: 2,
+            pointed: true,
+        }],
+        ..SynthSpec::small()
+    };
+    let img = dir.path().join("facade.png");
+    synthetic_facade(&spec, 4).image.save(&img).unwrap();
+    let (json, masonry, overlay, model) = (
+        dir.path().join("out/gothic.json"),
+        dir.path().join("masonry.png"),
+        dir.path().join("overlay.png"),
+        dir.path().join("model.glb"),
+    );
+    castellan()
+        .arg("gothic")
+        .arg(&img)
+        .arg("-o")
+        .arg(&json)
+        .arg("--masonry")
+        .arg(&masonry)
+        .arg("--overlay")
+        .arg(&overlay)
+        .arg("--model")
+        .arg(&model)
+        .assert()
+        .success();
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let elements = doc["elements"].as_array().unwrap();
+    assert_eq!(elements.len(), 3, "{doc:#}");
+    for key in ["id", "x0", "y0", "h", "w", "v", "group", "parent"] {
+        assert!(elements.iter().all(|e| e.get(key).is_some()), "{key}");
+    }
+    let nested = elements.iter().filter(|e| !e["parent"].is_null()).count();
+    assert_eq!(nested, 2);
+    assert_eq!(doc["groups"].as_array().unwrap().len(), 1);
+    assert!(!doc["stones"].as_array().unwrap().is_empty());
+    let m = image::open(&masonry).unwrap().to_luma8();
+    assert_eq!(m.dimensions(), (300, 400));
+    for v in 0..3u8 {
+        assert!(m.pixels().any(|p| p[0] == v), "label {v} missing");
+    }
+    assert!(m.pixels().all(|p| p[0] <= 2));
+    assert_eq!(image::open(&overlay).unwrap().width(), 300);
+    assert_eq!(&std::fs::read(&model).unwrap()[..4], b"glTF");
+}
+
+#[test]
+fn a_blank_wall_gives_an_empty_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let img = dir.path().join("blank.png");
+    RgbImage::from_pixel(64, 48, Rgb([180, 170, 160]))
+        .save(&img)
+        .unwrap();
+    let json = dir.path().join("g.json");
+    let out = castellan()
+        .arg("gothic")
+        .arg(&img)
+        .arg("-o")
+        .arg(&json)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        stderr.contains("no arched or rectangular element"),
+        "{stderr}"
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(doc["elements"].as_array().unwrap().len(), 0);
+}
+
+fn fails_naming(img: &std::path::Path, what: &str) {
+    let json = img.with_extension("json");
+    let out = castellan()
+        .arg("gothic")
+        .arg(img)
+        .arg("-o")
+        .arg(&json)
+        .arg("--overlay")
+        .arg(img.with_extension("overlay.png"))
+        .assert()
+        .failure();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    let name = img.file_name().unwrap().to_string_lossy().to_string();
+    assert!(stderr.contains(&name) && stderr.contains(what), "{stderr}");
+    assert!(!json.exists());
+    assert!(!img.with_extension("overlay.png").exists());
+}
+
+#[test]
+fn unreadable_and_tiny_images_are_clear_errors_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let junk = dir.path().join("junk.png");
+    std::fs::write(&junk, b"not a picture").unwrap();
+    fails_naming(&junk, "not a readable image");
+    fails_naming(&dir.path().join("missing.png"), "cannot read");
+    let tiny = dir.path().join("tiny.png");
+    RgbImage::from_pixel(1, 1, Rgb([0, 0, 0]))
+        .save(&tiny)
+        .unwrap();
+    fails_naming(&tiny, "too small");
+}

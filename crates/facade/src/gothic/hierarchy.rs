@@ -1,0 +1,137 @@
+//! Nesting of §4.2 / figure 4.4: plausible enclosing arches proposed over each group and
+//! maximised like any element, and the parent of every element (the smallest one containing it).
+
+use super::GothicParams;
+use super::detect::{Candidate, plausible, significant};
+use super::element::Theta;
+use super::likelihood::{DistanceMap, fit};
+use super::optimise::maximise;
+
+/// Whether `outer` contains `inner` with `tol` px of slack: the corners and apex of the
+/// inner element lie inside the grown outer one, and the outer one is larger.
+pub fn contains(outer: &Theta, inner: &Theta, tol: f64) -> bool {
+    let g = outer.grown(tol);
+    let big = outer.w * (outer.h + outer.v) > 1.2 * inner.w * (inner.h + inner.v);
+    big && inner
+        .constraint_points()
+        .iter()
+        .all(|p| g.contains(p[0], p[1]))
+}
+
+/// Starting shapes for an arch around `members`: a margin of 1 or 2 gaps on every side, the
+/// springing line either above the members' apexes or at their springing line, and a round
+/// to steeply pointed head (v from w/2 to 0.85 w).
+pub fn proposals(members: &[Theta]) -> Vec<Theta> {
+    let x0 = members.iter().map(|t| t.x0).fold(f64::MAX, f64::min);
+    let x1 = members.iter().map(|t| t.x0 + t.w).fold(f64::MIN, f64::max);
+    let bottom = members.iter().map(|t| t.y0).fold(f64::MIN, f64::max);
+    let apex = members.iter().map(|t| t.apex()).fold(f64::MAX, f64::min);
+    let spring = members
+        .iter()
+        .map(|t| t.springing())
+        .fold(f64::MAX, f64::min);
+    let mean_w = members.iter().map(|t| t.w).sum::<f64>() / members.len() as f64;
+    let gap = (0.25 * mean_w).max(3.0);
+    let mut out = Vec::new();
+    for m in [gap, 2.0 * gap] {
+        let w = x1 - x0 + 2.0 * m;
+        let y0 = bottom + m;
+        for top in [apex - m, spring] {
+            for rise in [0.5, 0.65, 0.85] {
+                out.push(Theta {
+                    x0: x0 - m,
+                    y0,
+                    h: (y0 - top).max(0.0),
+                    w,
+                    v: rise * w,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The best significant enclosing arch for a group, if any, containing every member.
+pub fn enclosing(dt: &DistanceMap, members: &[Theta], params: &GothicParams) -> Option<Candidate> {
+    use rayon::prelude::*;
+    let bounds = params.bounds();
+    let mut found: Vec<Candidate> = proposals(members)
+        .par_iter()
+        .filter_map(|start| {
+            let theta = maximise(dt, *start, params.step, bounds, params.max_iters);
+            let f = fit(dt, &theta, params.step);
+            let ok = plausible(&theta, bounds, dt.width, dt.height)
+                && significant(&f, params)
+                && members
+                    .iter()
+                    .all(|m| contains(&theta, m, params.nesting_tolerance));
+            ok.then_some(Candidate { theta, fit: f })
+        })
+        .collect();
+    found.sort_by(|a, b| a.fit.mean_distance.total_cmp(&b.fit.mean_distance));
+    found.into_iter().next()
+}
+
+/// For each element, the index of the smallest other element containing it.
+pub fn parents(shapes: &[Theta], tol: f64) -> Vec<Option<usize>> {
+    let area = |t: &Theta| t.w * (t.h + t.v);
+    (0..shapes.len())
+        .map(|i| {
+            (0..shapes.len())
+                .filter(|&j| j != i && contains(&shapes[j], &shapes[i], tol))
+                .min_by(|&a, &b| area(&shapes[a]).total_cmp(&area(&shapes[b])))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parents_are_the_smallest_container() {
+        let small = Theta {
+            x0: 50.0,
+            y0: 200.0,
+            h: 40.0,
+            w: 20.0,
+            v: 10.0,
+        };
+        let small2 = Theta { x0: 80.0, ..small };
+        let mid = Theta {
+            x0: 40.0,
+            y0: 210.0,
+            h: 60.0,
+            w: 70.0,
+            v: 40.0,
+        };
+        let big = Theta {
+            x0: 20.0,
+            y0: 230.0,
+            h: 90.0,
+            w: 120.0,
+            v: 70.0,
+        };
+        let p = parents(&[small, small2, mid, big], 2.0);
+        assert_eq!(p, vec![Some(2), Some(2), Some(3), None]);
+    }
+
+    #[test]
+    fn proposals_contain_the_members() {
+        let a = Theta {
+            x0: 50.0,
+            y0: 200.0,
+            h: 40.0,
+            w: 20.0,
+            v: 14.0,
+        };
+        let b = Theta { x0: 80.0, ..a };
+        let props = proposals(&[a, b]);
+        assert_eq!(props.len(), 12);
+        assert!(
+            props
+                .iter()
+                .all(|p| contains(p, &a, 0.5) && contains(p, &b, 0.5))
+        );
+    }
+}
