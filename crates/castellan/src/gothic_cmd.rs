@@ -86,7 +86,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
 
 /// The image with mortar tinted (when segmented) and every element's contour drawn: top-level
 /// elements red, nested ones blue, deeper ones green.
-fn overlay(img: &RgbImage, est: &GothicEstimate, masonry: Option<&Masonry>) -> RgbImage {
+pub(crate) fn overlay(img: &RgbImage, est: &GothicEstimate, masonry: Option<&Masonry>) -> RgbImage {
     let mut o = img.clone();
     if let Some(m) = masonry {
         for (p, &l) in o.pixels_mut().zip(&m.labels) {

@@ -9,6 +9,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use image::GrayImage;
+use integrate::gothic::{GothicFacadeEstimate, GothicPhoto, estimate_gothic};
 use integrate::photo::{FacadeEstimate, FacadePhoto, estimate_facade};
 use integrate::project::{Project, TrainingSource};
 use rayon::prelude::*;
@@ -86,7 +87,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
     let dir = project_path.parent().unwrap_or(Path::new("")).to_path_buf();
     let seed = seed.or(project.seed).unwrap_or(0);
-    let bar = progress(4 + project.facades.len() as u64);
+    let bar = progress(4 + (project.facades.len() + project.gothics.len()) as u64);
     let mut stages: Vec<(String, f64)> = Vec::new();
     let mut outputs = Outputs::default();
 
@@ -150,6 +151,70 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         })
         .collect::<Result<_>>()?;
     stages.push(("facades".into(), ms(t)));
+
+    if !project.gothics.is_empty() {
+        bar.set_message("Gothic façades (ch. 4)");
+    }
+    let t = Instant::now();
+    let gothic_inputs: Vec<_> = project
+        .gothics
+        .iter()
+        .enumerate()
+        .map(|(i, g)| -> Result<_> {
+            let at = format!("{name}: [[gothic]] #{} (image = \"{}\")", i + 1, g.image);
+            let image = read_image(&dir.join(&g.image)).with_context(|| at.clone())?;
+            let lines: Option<facade::rectify::ManualLines> = match &g.lines {
+                Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.clone())?),
+                None => None,
+            };
+            Ok((image.to_rgb8(), lines))
+        })
+        .collect::<Result<_>>()?;
+    let gothics: Vec<GothicFacadeEstimate> = project
+        .gothics
+        .par_iter()
+        .zip(&gothic_inputs)
+        .map(|(g, (image, lines))| {
+            let e = estimate_gothic(&GothicPhoto {
+                name: &g.image,
+                image,
+                bbox: g.bbox,
+                lines: lines.as_ref(),
+                rectified: g.rectified,
+            })
+            .map_err(|e| anyhow!("{name}: [[gothic]] image = \"{}\": {e}", g.image));
+            bar.inc(1);
+            e
+        })
+        .collect::<Result<_>>()?;
+    if !gothics.is_empty() {
+        stages.push(("gothic".into(), ms(t)));
+    }
+    for g in &gothics {
+        let stem = stem(&g.name);
+        if let Some((r, (photo, _))) = g.rectification.as_ref().zip(
+            project
+                .gothics
+                .iter()
+                .position(|e| e.image == g.name)
+                .map(|i| &gothic_inputs[i]),
+        ) {
+            outputs.add(
+                &outdir.join(format!("overlays/{stem}_lines.png")),
+                png(
+                    &facade::rectify::draw_overlay(photo, r),
+                    Path::new("lines overlay"),
+                )?,
+            );
+        }
+        outputs.add(
+            &outdir.join(format!("overlays/{stem}_gothic.png")),
+            png(
+                &crate::gothic_cmd::overlay(&g.facade, &g.estimate, Some(&g.masonry)),
+                Path::new("Gothic overlay"),
+            )?,
+        );
+    }
     for (e, (photo, _, _)) in estimates.iter().zip(&inputs) {
         let stem = stem(&e.name);
         if let Some(r) = &e.rectification {
@@ -184,6 +249,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         plan_image: &project.plan,
         scale: project.scale,
         facades: &estimates,
+        gothics: &gothics,
         correspondences: &project.correspondences,
     })
     .map_err(|e| anyhow!("{name}: {e}"))?;
@@ -222,11 +288,15 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         seed,
         ..Default::default()
     };
+    let generated = integrate::gothic_programs(&estimate, &gothics);
+    for (file, text) in &generated {
+        outputs.add(&outdir.join(file), text.clone().into_bytes());
+    }
     let model = vsg::run_with(
         "model.vsg",
         &program,
         &options,
-        &mut integrate::library::Library,
+        &mut integrate::library::Library::with(generated),
     )
     .map_err(|e| {
         anyhow!(

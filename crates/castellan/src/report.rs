@@ -51,9 +51,10 @@ pub fn html(
     );
     let _ = writeln!(
         h,
-        "<p>Plan <code>{}</code>, {} façade photo(s); units: {} ({} per plan pixel). Outputs: <a href=\"model.glb\">model.glb</a> (Blender, three.js, any glTF viewer), <a href=\"model.obj\">model.obj</a> (MeshLab), <a href=\"model.vsg\">model.vsg</a> (the generated program: <code>castellan vsg run model.vsg -o model.glb</code>), <a href=\"estimate.json\">estimate.json</a>, <a href=\"stats.json\">stats.json</a>, <a href=\"plan.svg\">plan.svg</a>.</p>",
+        "<p>Plan <code>{}</code>, {} façade photo(s), {} Gothic façade(s); units: {} ({} per plan pixel). Outputs: <a href=\"model.glb\">model.glb</a> (Blender, three.js, any glTF viewer), <a href=\"model.obj\">model.obj</a> (MeshLab), <a href=\"model.vsg\">model.vsg</a> (the generated program: <code>castellan vsg run model.vsg -o model.glb</code>), <a href=\"estimate.json\">estimate.json</a>, <a href=\"stats.json\">stats.json</a>, <a href=\"plan.svg\">plan.svg</a>.</p>",
         esc(&project.plan),
         project.facades.len(),
+        project.gothics.len(),
         esc(&e.units),
         e.scale
     );
@@ -95,6 +96,23 @@ pub fn html(
             esc(&f.image)
         );
     }
+    for g in &project.gothics {
+        let stem = crate::reconstruct_cmd::stem(&g.image);
+        if !g.rectified {
+            let _ = writeln!(
+                h,
+                "<figure><img src=\"overlays/{0}_lines.png\"><figcaption>{1}: line families and vanishing points (§3.1.1)</figcaption></figure>",
+                esc(&stem),
+                esc(&g.image)
+            );
+        }
+        let _ = writeln!(
+            h,
+            "<figure><img src=\"overlays/{0}_gothic.png\"><figcaption>{1}: arches, groups, nesting and stones (ch. 4)</figcaption></figure>",
+            esc(&stem),
+            esc(&g.image)
+        );
+    }
     let _ = writeln!(
         h,
         "<h2>Structures (§6.1.3)</h2><table><tr><th>id</th><th>label</th><th>footprint</th><th>height</th><th>façades</th><th>provenance</th></tr>"
@@ -123,8 +141,17 @@ pub fn html(
         let facades: Vec<String> = s
             .facades
             .iter()
-            .map(|f| {
-                format!(
+            .map(|f| match &f.gothic {
+                Some(g) => format!(
+                    "{} → {}: Gothic, {} arches in {} groups, {} stones, s = {:.4}",
+                    esc(&f.image),
+                    f.side,
+                    g.elements,
+                    g.groups,
+                    g.stones,
+                    f.scale
+                ),
+                None => format!(
                     "{} → {}: {} floors, {} windows/floor, s = {:.4}{}",
                     esc(&f.image),
                     f.side,
@@ -132,7 +159,7 @@ pub fn html(
                     f.windows.count,
                     f.scale,
                     if f.joint { ", joint" } else { "" }
-                )
+                ),
             })
             .collect();
         let prov: Vec<String> = s

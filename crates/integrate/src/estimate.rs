@@ -107,6 +107,21 @@ pub struct MappedFacade {
     /// Texture file of the rectified, cropped photo, if written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub texture: Option<String>,
+    /// A Gothic façade (ch. 4) replaces the wall with its arches and stones.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gothic: Option<GothicMapped>,
+}
+
+/// A Gothic façade on a wall: the block program it becomes and what it holds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GothicMapped {
+    /// The program file (facade::gothic::to_vsg at the model's scale) the model imports.
+    pub program: String,
+    /// The import's namespace in the generated program.
+    pub alias: String,
+    pub elements: usize,
+    pub groups: usize,
+    pub stones: usize,
 }
 
 /// One floor of a mapped façade, model units.

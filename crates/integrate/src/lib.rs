@@ -22,18 +22,20 @@
 //!     plan_image: "plan.png",
 //!     scale: Some(truth.metres_per_pixel),
 //!     facades: &[],
+//!     gothics: &[],
 //!     correspondences: &[],
 //! })
 //! .unwrap();
 //! assert_eq!(estimate.units, "m");
 //! assert!(estimate.structures.iter().filter(|s| s.label == "tower_room").count() >= 2);
 //! let src = program::generate(&estimate, &program::Options::default());
-//! let model = vsg::run_with("model.vsg", &src, &vsg::RunOptions::default(), &mut integrate::library::Library).unwrap();
+//! let model = vsg::run_with("model.vsg", &src, &vsg::RunOptions::default(), &mut integrate::library::Library::default()).unwrap();
 //! assert!(model.terminals().count() > 0);
 //! ```
 
 pub mod correspond;
 pub mod estimate;
+pub mod gothic;
 pub mod library;
 pub mod photo;
 pub mod program;
@@ -50,8 +52,10 @@ use plan::ParsedPlan;
 
 use crate::correspond::{Placement, facade_at, place, structure_at};
 use crate::estimate::{
-    Element, Estimate, FloorEstimate, Kind, MappedFacade, PlanSource, Provenance, WindowColumns,
+    Element, Estimate, FloorEstimate, GothicMapped, Kind, MappedFacade, PlanSource, Provenance,
+    Structure, WindowColumns,
 };
+use crate::gothic::GothicFacadeEstimate;
 use crate::photo::FacadeEstimate;
 use crate::project::Correspondence;
 use crate::structures::{Frame, assumed_units_per_metre};
@@ -81,6 +85,8 @@ pub struct Inputs<'a> {
     /// Metres per plan pixel.
     pub scale: Option<f64>,
     pub facades: &'a [FacadeEstimate],
+    /// Gothic façade estimates (ch. 4).
+    pub gothics: &'a [GothicFacadeEstimate],
     pub correspondences: &'a [Correspondence],
 }
 
@@ -117,12 +123,45 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
     };
     let mut structures = structures::from_plan(plan, inputs.plan_image, frame);
     let mut mappings: Vec<Vec<Mapping>> = (0..structures.len()).map(|_| Vec::new()).collect();
+    let mut gothic_mappings: Vec<Vec<(usize, Placement)>> =
+        (0..structures.len()).map(|_| Vec::new()).collect();
     for (i, c) in inputs.correspondences.iter().enumerate() {
         let fail = |message: String| IntegrateError::Correspondence {
             index: i + 1,
             facade: c.facade.clone(),
             message,
         };
+        let points: Vec<[f64; 2]> = c
+            .plan_points
+            .iter()
+            .map(|p| [p[0] * frame.scale, p[1] * frame.scale])
+            .collect();
+        let target = structure_at(&structures, points[0]).ok_or_else(|| {
+            let [x, y] = c.plan_points[0];
+            let label = (x >= 0.0 && y >= 0.0 && x < f64::from(plan.width) && y < f64::from(plan.height))
+                .then(|| plan.label_at(x as u32, y as u32).name())
+                .unwrap_or("outside the drawing");
+            fail(format!(
+                "plan point [{x}, {y}] is not inside any plan shape with a circle or rectangle fit or a wall (label there: {label})"
+            ))
+        })?;
+        let placement = place(&structures[target].footprint, &points);
+        if let Some(g) = inputs.gothics.iter().position(|g| g.name == c.facade) {
+            let est = &inputs.gothics[g];
+            let [x0, y0, x1, y1] = est.bbox;
+            let inside = est
+                .to_rectified(c.facade_point)
+                .is_some_and(|q| (x0..=x1).contains(&q[0]) && (y0..=y1).contains(&q[1]));
+            if !inside {
+                return Err(fail(format!(
+                    "facade_point {:?} is not inside the Gothic façade's box (rectified {:?})",
+                    c.facade_point,
+                    est.bbox.map(|v| v.round())
+                )));
+            }
+            gothic_mappings[target].push((g, placement));
+            continue;
+        }
         let photo = inputs
             .facades
             .iter()
@@ -146,21 +185,6 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
                 if found.is_empty() { "none".into() } else { found.join(", ") }
             ))
         })?;
-        let points: Vec<[f64; 2]> = c
-            .plan_points
-            .iter()
-            .map(|p| [p[0] * frame.scale, p[1] * frame.scale])
-            .collect();
-        let target = structure_at(&structures, points[0]).ok_or_else(|| {
-            let [x, y] = c.plan_points[0];
-            let label = (x >= 0.0 && y >= 0.0 && x < f64::from(plan.width) && y < f64::from(plan.height))
-                .then(|| plan.label_at(x as u32, y as u32).name())
-                .unwrap_or("outside the drawing");
-            fail(format!(
-                "plan point [{x}, {y}] is not inside any plan shape with a circle or rectangle fit or a wall (label there: {label})"
-            ))
-        })?;
-        let placement = place(&structures[target].footprint, &points);
         mappings[target].push(Mapping {
             photo,
             facade,
@@ -238,6 +262,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
                 joint,
                 bbox: [p.x_fl, p.y_ft, p.x_fr, p.y_fb],
                 texture: None,
+                gothic: None,
             };
             replace_wall(
                 structure.kind,
@@ -261,6 +286,12 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
             structure.facades.push(mapped);
         }
     }
+    for (k, (structure, maps)) in structures.iter_mut().zip(&gothic_mappings).enumerate() {
+        for (j, (g, placement)) in maps.iter().enumerate() {
+            let est = &inputs.gothics[*g];
+            map_gothic(structure, est, placement, &format!("g{}_{}", k + 1, j + 1));
+        }
+    }
     Ok(Estimate {
         units: units.into(),
         scale: frame.scale,
@@ -274,6 +305,100 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
         structures,
         assumptions,
     })
+}
+
+/// A Gothic façade on a structure's wall (§6.1.2–6.1.3): scaled by s = w_p / w_f, it replaces
+/// the wall with its arches and stones; it sets the height when no rectangular façade did.
+fn map_gothic(
+    structure: &mut Structure,
+    est: &GothicFacadeEstimate,
+    placement: &Placement,
+    alias: &str,
+) {
+    let (side, arc, w_p) = match *placement {
+        Placement::Side { side, length } => (side.to_string(), None, length),
+        Placement::Arc {
+            start,
+            end,
+            diameter,
+        } => ("arc".to_string(), Some([start, end]), diameter),
+    };
+    let [x0, y0, x1, y1] = est.bbox;
+    let s = w_p / (x1 - x0).max(1.0);
+    let height = (y1 - y0) * s;
+    if structure.facades.is_empty() {
+        structure.height = height;
+        structure.provenance.insert(
+            "height".into(),
+            Provenance::new(
+                &est.name,
+                "§6.1.2 Gothic façade height scaled by w_p / w_f",
+                None,
+            ),
+        );
+    }
+    structure.provenance.insert(
+        format!("facade.{}.{side}", est.name),
+        Provenance::new(
+            &est.name,
+            format!(
+                "§4.2 {} elements in {} groups, {} stones; scaled by s = {s:.4} (w_p / w_f, §6.1.2)",
+                est.estimate.elements.len(),
+                est.estimate.groups.len(),
+                est.masonry.stones.len()
+            ),
+            None,
+        ),
+    );
+    let mapped = MappedFacade {
+        image: est.name.clone(),
+        side,
+        arc,
+        scale: s,
+        height_factor: 1.0,
+        width: w_p,
+        height,
+        floors: Vec::new(),
+        windows: WindowColumns {
+            count: 0,
+            offset: 0.0,
+            width: 0.0,
+            gap: 0.0,
+        },
+        joint: false,
+        bbox: est.bbox,
+        texture: None,
+        gothic: Some(GothicMapped {
+            program: format!("gothic_{alias}.vsg"),
+            alias: alias.to_string(),
+            elements: est.estimate.elements.len(),
+            groups: est.estimate.groups.len(),
+            stones: est.masonry.stones.len(),
+        }),
+    };
+    let k = structure.facades.len();
+    let id = structure.id.clone();
+    replace_wall(structure.kind, &id, &mut structure.children, &mapped, k);
+    structure.facades.push(mapped);
+}
+
+/// Each mapped Gothic façade's block program (file name, text), in the model's units and with
+/// its structure's wall thickness: the files the generated program imports.
+pub fn gothic_programs(
+    estimate: &Estimate,
+    gothics: &[GothicFacadeEstimate],
+) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    for s in &estimate.structures {
+        for f in &s.facades {
+            let (Some(g), Some(est)) = (&f.gothic, gothics.iter().find(|e| e.name == f.image))
+            else {
+                continue;
+            };
+            out.push((g.program.clone(), est.program(f.scale, s.wall_thickness)));
+        }
+    }
+    out
 }
 
 /// The façades' parameters; several on one structure are re-estimated jointly (§6.1.2).

@@ -26,14 +26,26 @@ pub const FILES: [(&str, &str); 6] = [
     ),
 ];
 
-/// Resolves imports from [`FILES`] only.
-pub struct Library;
+/// Resolves imports from [`FILES`] and from programs generated for this model (the Gothic
+/// façades' block programs).
+#[derive(Debug, Clone, Default)]
+pub struct Library {
+    pub generated: Vec<(String, String)>,
+}
+
+impl Library {
+    pub fn with(generated: Vec<(String, String)>) -> Library {
+        Library { generated }
+    }
+}
 
 impl vsg::import::Resolver for Library {
     fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
         let name = path.trim_start_matches("./");
         FILES
             .iter()
+            .map(|(n, t)| (*n, *t))
+            .chain(self.generated.iter().map(|(n, t)| (n.as_str(), t.as_str())))
             .find(|(n, _)| *n == name)
             .map(|(n, text)| (n.to_string(), text.to_string()))
             .ok_or_else(|| {

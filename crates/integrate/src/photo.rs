@@ -104,7 +104,8 @@ pub fn map_training(t: &Training, h: &Matrix3<f64>) -> Training {
     Training { classes }
 }
 
-fn map_box(b: &[f64; 4], h: &Matrix3<f64>) -> Option<[f64; 4]> {
+/// A box mapped through `h`, shrunk to the axis-aligned box inside the mapped quadrilateral.
+pub fn map_box(b: &[f64; 4], h: &Matrix3<f64>) -> Option<[f64; 4]> {
     let (x0, x1) = (b[0].min(b[2]), b[0].max(b[2]));
     let (y0, y1) = (b[1].min(b[3]), b[1].max(b[3]));
     let p = |x: f64, y: f64| facade::rectify::apply(h, x, y);

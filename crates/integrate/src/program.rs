@@ -347,7 +347,14 @@ impl Writer {
             format!("T({id}P[0], {id}P[1], {id}P[2]) R(0, {id}R, 0) I(\"box\", {{{id}S[0], {id}S[1], {id}S[2]}})"),
             id.clone(),
         ));
-        hollow_box_with_facades(s, o, u, &mut self.params, &mut self.rules);
+        hollow_box_with_facades(
+            s,
+            o,
+            u,
+            &mut self.imports,
+            &mut self.params,
+            &mut self.rules,
+        );
         let _ = writeln!(self.rules, "{id}Roof :: {{roof}};");
         let across_depth = size[1] <= size[0];
         let (short, long) = if across_depth {
@@ -398,10 +405,12 @@ fn site_rule(rules: &mut String, id: &str, o: &Options) {
     }
 }
 
-/// Storeys of a structure: its first façade's floor count, else height / storey height.
+/// Storeys of a structure: its first rectangular façade's floor count, else height / storey
+/// height.
 fn storeys(s: &Structure, o: &Options, u: f64) -> u32 {
     s.facades
-        .first()
+        .iter()
+        .find(|f| !f.floors.is_empty())
         .map(|f| f.floors.len() as u32)
         .unwrap_or_else(|| (s.height / (o.storey_metres * u)).round() as u32)
         .clamp(1, 30)
@@ -425,6 +434,7 @@ fn hollow_box_with_facades(
     s: &Structure,
     o: &Options,
     u: f64,
+    imports: &mut String,
     params: &mut String,
     rules: &mut String,
 ) {
@@ -438,7 +448,7 @@ fn hollow_box_with_facades(
     };
     let t = s.wall_thickness.min(size[0].min(size[1]) * 0.3);
     // Interior storeys follow the first façade's floors.
-    let floor_heights: Vec<f64> = match s.facades.first() {
+    let floor_heights: Vec<f64> = match s.facades.iter().find(|f| !f.floors.is_empty()) {
         Some(f) => f.floors.iter().map(|fl| fl.height).collect(),
         None => vec![s.height / f64::from(storeys(s, o, u)); storeys(s, o, u) as usize],
     };
@@ -463,9 +473,55 @@ fn hollow_box_with_facades(
             None => {
                 let _ = writeln!(rules, "{id}Wall_{side} :: {{masonry}};");
             }
-            Some(k) => facade_rules(s, &s.facades[k], k + 1, side, t, params, rules),
+            Some(k) => match &s.facades[k].gothic {
+                Some(g) => gothic_wall(s, &s.facades[k], g, side, imports, rules),
+                None => facade_rules(s, &s.facades[k], k + 1, side, t, params, rules),
+            },
         }
     }
+}
+
+/// §6.1.3 for a Gothic façade: the wall is replaced by the façade's block program (its wall
+/// minus the arches, the arches' glass and tympana, the stones), imported and placed with its
+/// origin at the wall's foot at its left end seen from outside, x along the wall, z outwards.
+fn gothic_wall(
+    s: &Structure,
+    f: &MappedFacade,
+    g: &crate::estimate::GothicMapped,
+    side: &str,
+    imports: &mut String,
+    rules: &mut String,
+) {
+    let Footprint::Rectangle { size, .. } = s.footprint else {
+        return;
+    };
+    let (a, b, h) = (size[0] / 2.0, size[1] / 2.0, s.height / 2.0);
+    let (x, z, turn) = match side {
+        "north" => (a, 0.0, std::f64::consts::PI),
+        "south" => (-a, 0.0, 0.0),
+        "east" => (0.0, b, std::f64::consts::FRAC_PI_2),
+        _ => (0.0, -b, -std::f64::consts::FRAC_PI_2),
+    };
+    let id = &s.id;
+    let alias = &g.alias;
+    let _ = writeln!(
+        imports,
+        "import {:?} as {alias}; // Gothic façade {} ({} arches, {} stones), scaled by s = {}",
+        g.program,
+        f.image,
+        g.elements,
+        g.stones,
+        n(f.scale)
+    );
+    let _ = writeln!(
+        rules,
+        "\n// {id}Wall_{side} is replaced by the Gothic façade {} (figure 6.3, ch. 4).\n{id}Wall_{side} :: T({}, {}, {}) R(0, {}, 0) I(\"box\", {{0.001, 0.001, 0.001}}){{{alias}.Axiom}};",
+        f.image,
+        n(x),
+        n(-h),
+        n(z),
+        n(turn)
+    );
 }
 
 /// Lengths as `~` relative sizes (they fill their shape whatever the rounding).

@@ -18,6 +18,9 @@ pub struct Project {
     pub seed: Option<u64>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
     pub facades: Vec<FacadeEntry>,
+    /// Gothic façade photos (ch. 4): their arches and stones replace the wall they map to.
+    #[serde(default, rename = "gothic", skip_serializing_if = "Vec::is_empty")]
+    pub gothics: Vec<GothicEntry>,
     #[serde(
         default,
         rename = "correspondence",
@@ -40,6 +43,21 @@ pub struct FacadeEntry {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lines: Option<String>,
     /// The photo is already a rectified elevation: skip §3.1.1.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rectified: bool,
+}
+
+/// A Gothic façade photo (ch. 4): no training boxes; the façade is the part of the
+/// (rectified) photo inside `bbox`, or all of it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GothicEntry {
+    pub image: String,
+    /// The façade's extent [x0, y0, x1, y1] in the photo's pixels.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bbox: Option<[f64; 4]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lines: Option<String>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub rectified: bool,
 }
@@ -120,6 +138,33 @@ impl Project {
                 "scale = {s}: metres per plan pixel must be a positive number"
             ));
         }
+        let mut images: Vec<&str> = self.facades.iter().map(|f| f.image.as_str()).collect();
+        images.extend(self.gothics.iter().map(|g| g.image.as_str()));
+        for (i, g) in self.gothics.iter().enumerate() {
+            if images.iter().filter(|n| **n == g.image).count() > 1 {
+                return bad(format!(
+                    "[[gothic]] #{} (image = \"{}\"): this image is listed twice",
+                    i + 1,
+                    g.image
+                ));
+            }
+            if !self.correspondences.iter().any(|c| c.facade == g.image) {
+                return bad(format!(
+                    "[[gothic]] #{} (image = \"{}\"): no [[correspondence]] maps this façade to a plan shape",
+                    i + 1,
+                    g.image
+                ));
+            }
+            if let Some(b) = g.bbox
+                && !(b.iter().all(|v| v.is_finite()) && b[2] > b[0] && b[3] > b[1])
+            {
+                return bad(format!(
+                    "[[gothic]] #{} (image = \"{}\"): bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
+                    i + 1,
+                    g.image
+                ));
+            }
+        }
         for (i, f) in self.facades.iter().enumerate() {
             if self.facades[..i].iter().any(|g| g.image == f.image) {
                 return bad(format!(
@@ -131,8 +176,10 @@ impl Project {
         }
         for (i, c) in self.correspondences.iter().enumerate() {
             let at = format!("[[correspondence]] #{} (facade = \"{}\")", i + 1, c.facade);
-            if !self.facades.iter().any(|f| f.image == c.facade) {
-                return bad(format!("{at}: no [[facade]] entry has this image"));
+            if !images.contains(&c.facade.as_str()) {
+                return bad(format!(
+                    "{at}: no [[facade]] or [[gothic]] entry has this image"
+                ));
             }
             if !(1..=2).contains(&c.plan_points.len()) {
                 return bad(format!(

@@ -54,6 +54,7 @@ fn keep_and_towers_match_facades_and_plan() {
         plan_image: "plan.png",
         scale: Some(castle.metres_per_pixel),
         facades: &estimates,
+        gothics: &[],
         correspondences: &correspondences,
     })
     .unwrap();
@@ -104,7 +105,7 @@ fn keep_and_towers_match_facades_and_plan() {
         "model.vsg",
         &src,
         &vsg::RunOptions::default(),
-        &mut integrate::library::Library,
+        &mut integrate::library::Library::default(),
     )
     .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", &src)));
     let windows = model
@@ -146,6 +147,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         plan_image: "plan.png",
         scale: Some(castle.metres_per_pixel),
         facades: std::slice::from_ref(&estimate),
+        gothics: &[],
         correspondences: std::slice::from_ref(&correspondence),
     })
     .unwrap();
@@ -177,7 +179,77 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         "model.vsg",
         &src,
         &vsg::RunOptions::default(),
-        &mut integrate::library::Library,
+        &mut integrate::library::Library::default(),
     )
     .unwrap_or_else(|e| panic!("{}", e.render("model.vsg", &src)));
+}
+
+#[test]
+fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
+    use facade::gothic::synth::{SynthSpec, synthetic_facade};
+    use integrate::gothic::{GothicPhoto, estimate_gothic};
+    let castle = Castle::default();
+    let plan = plan::parse(
+        &image::DynamicImage::ImageLuma8(castle.plan()),
+        &plan::Options::default(),
+    )
+    .unwrap();
+    let synth = synthetic_facade(&SynthSpec::small(), 1);
+    let name = "gothic_north.png";
+    let gothic = estimate_gothic(&GothicPhoto {
+        name,
+        image: &synth.image,
+        bbox: None,
+        lines: None,
+        rectified: true,
+    })
+    .unwrap();
+    assert!(!gothic.estimate.elements.is_empty());
+    let (w, h) = synth.image.dimensions();
+    let north = [
+        castle.keep_center[0],
+        castle.keep_center[1] - castle.keep_size[1] / 2.0 + 12.0,
+    ];
+    let correspondence = Correspondence {
+        facade: name.into(),
+        facade_point: [f64::from(w) / 2.0, f64::from(h) / 2.0],
+        plan_points: vec![north],
+    };
+    let gothics = [gothic];
+    let result = integrate(&Inputs {
+        plan: &plan,
+        plan_image: "plan.png",
+        scale: Some(castle.metres_per_pixel),
+        facades: &[],
+        gothics: &gothics,
+        correspondences: std::slice::from_ref(&correspondence),
+    })
+    .unwrap();
+    let keep = keep(&result.structures);
+    let f = &keep.facades[0];
+    assert_eq!(f.side, "north");
+    let g = f.gothic.as_ref().expect("a Gothic façade");
+    assert_eq!(g.elements, gothics[0].estimate.elements.len());
+    // Its width is the keep's north side and its height the keep's height.
+    assert!((f.width - castle.keep_width()).abs() < 0.05 * castle.keep_width());
+    assert!((keep.height - f64::from(h) * f.scale).abs() < 1e-9);
+    let src = program::generate(&result, &program::Options::default());
+    assert!(src.contains(&format!("import {:?} as {}", g.program, g.alias)), "{src}");
+    let generated = integrate::gothic_programs(&result, &gothics);
+    assert_eq!(generated.len(), 1);
+    let model = vsg::run_with(
+        "model.vsg",
+        &src,
+        &vsg::RunOptions::default(),
+        &mut integrate::library::Library::with(generated),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.render("model.vsg", &src)));
+    let stats = vsg::stats::Stats::of(&model, &vsg::shape::Tessellation::default());
+    let arches: usize = stats
+        .by_symbol
+        .iter()
+        .filter(|(k, _)| k.starts_with(&format!("{}.", g.alias)))
+        .map(|(_, v)| *v)
+        .sum();
+    assert!(arches > g.elements, "the façade's blocks are in the model: {:?}", stats.by_symbol);
 }

@@ -1,0 +1,116 @@
+//! A Gothic façade photo through chapter 4 for integration: rectification (§3.1.1), the façade
+//! cut out of the rectified photo, its arches, groups and nesting (§4.1–4.2) and its masonry;
+//! then, once its scale on the plan is known, the block-level VSG program that replaces the
+//! wall it maps to (§6.1.3), imported by the generated model.
+
+use facade::gothic::masonry::{self, Masonry, MasonryParams};
+use facade::gothic::{GothicEstimate, GothicParams, VsgOptions, estimate, to_vsg};
+use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
+use image::RgbImage;
+use nalgebra::Matrix3;
+
+use crate::IntegrateError;
+use crate::photo::map_box;
+use crate::textures::crop;
+
+/// A Gothic façade photo with what the user gave for it.
+pub struct GothicPhoto<'a> {
+    pub name: &'a str,
+    pub image: &'a RgbImage,
+    /// The façade's extent in the photo's pixels (all of it when `None`).
+    pub bbox: Option<[f64; 4]>,
+    pub lines: Option<&'a ManualLines>,
+    pub rectified: bool,
+}
+
+/// The chapter 4 estimate of one photo, in the pixels of the façade cut-out.
+pub struct GothicFacadeEstimate {
+    pub name: String,
+    /// Photo pixels → rectified pixels.
+    pub homography: Matrix3<f64>,
+    pub rectification: Option<Rectification>,
+    /// The façade's box in the rectified photo [x0, y0, x1, y1].
+    pub bbox: [f64; 4],
+    /// The rectified façade cut-out the estimate is in.
+    pub facade: RgbImage,
+    pub estimate: GothicEstimate,
+    pub masonry: Masonry,
+}
+
+/// Runs §3.1.1 and §4.1–4.2 on one photo.
+pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
+    let err = |step: &str, e: facade::FacadeError| IntegrateError::Facade {
+        image: photo.name.to_string(),
+        step: step.to_string(),
+        message: e.to_string(),
+    };
+    let (w, h) = photo.image.dimensions();
+    let rectification = if photo.rectified {
+        None
+    } else {
+        let params = RectifyParams::default();
+        Some(
+            match photo.lines {
+                Some(lines) => rectify_with_lines(w, h, lines, &params),
+                None => rectify(photo.image, &params),
+            }
+            .map_err(|e| err("rectification (§3.1.1)", e))?,
+        )
+    };
+    let (homography, rectified) = match &rectification {
+        Some(r) => (
+            r.h,
+            r.warp(photo.image)
+                .map_err(|e| err("rectification (§3.1.1)", e))?,
+        ),
+        None => (Matrix3::identity(), photo.image.clone()),
+    };
+    let (rw, rh) = rectified.dimensions();
+    let whole = [0.0, 0.0, f64::from(rw), f64::from(rh)];
+    let bbox = match photo.bbox {
+        Some(b) => map_box(&b, &homography).unwrap_or(whole),
+        None => whole,
+    };
+    let facade = crop(&rectified, bbox).ok_or_else(|| IntegrateError::Facade {
+        image: photo.name.to_string(),
+        step: "façade box".into(),
+        message: format!(
+            "bbox {:?} has no pixels inside the rectified photo",
+            photo.bbox
+        ),
+    })?;
+    let estimate =
+        estimate(&facade, &GothicParams::default()).map_err(|e| err("arches (§4.1–4.2)", e))?;
+    let masonry = masonry::segment(&facade, &estimate, &MasonryParams::default());
+    Ok(GothicFacadeEstimate {
+        name: photo.name.to_string(),
+        homography,
+        rectification,
+        bbox,
+        facade,
+        estimate,
+        masonry,
+    })
+}
+
+impl GothicFacadeEstimate {
+    /// A photo point in rectified pixels.
+    pub fn to_rectified(&self, p: [f64; 2]) -> Option<[f64; 2]> {
+        facade::rectify::apply(&self.homography, p[0], p[1]).map(|(x, y)| [x, y])
+    }
+
+    /// The façade as a VSG program in model units (`scale` units per façade pixel), its wall
+    /// `wall_depth` thick: x along the wall from its left end as seen from outside, y up from
+    /// the foot, z out of the wall (facade::gothic::to_vsg).
+    pub fn program(&self, scale: f64, wall_depth: f64) -> String {
+        to_vsg(
+            &self.estimate,
+            Some(&self.masonry),
+            &VsgOptions {
+                px_per_unit: 1.0 / scale.max(1e-12),
+                wall_depth,
+                stone_depth: (0.02 * wall_depth).max(1e-3),
+            },
+        )
+    }
+}
