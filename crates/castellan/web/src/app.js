@@ -137,6 +137,12 @@ function boxes() {
   return t.classes;
 }
 
+function showBoxCount(note) {
+  const n = Object.values(boxes()).reduce((a, l) => a + l.length, 0);
+  $('boxes-info').dataset.count = String(n);
+  $('boxes-info').textContent = `${n} boxes (${note})`;
+}
+
 function drawBoxes(ctx) {
   for (const [cls, list] of Object.entries(boxes())) {
     ctx.strokeStyle = COLOURS[cls] || '#000';
@@ -159,8 +165,7 @@ async function selectFacade(name) {
   const img = await loadImage(fresh(`/files/${name}`));
   state.photos[name] = img;
   redrawPhoto = canvasImage($('facade-canvas'), img, drawBoxes);
-  const n = Object.values(boxes()).reduce((a, l) => a + l.length, 0);
-  $('boxes-info').textContent = `${n} boxes`;
+  showBoxCount('saved');
   for (const id of ['rectify-overlay', 'facade-overlay']) $(id).removeAttribute('src');
   drawCorrespondences();
 }
@@ -195,18 +200,21 @@ window.addEventListener('mouseup', () => {
     if (x1 - x0 >= 2 && y1 - y0 >= 2) (boxes()[d.cls] ||= []).push([x0, y0, x1, y1].map(Math.round));
   }
   redrawPhoto();
+  showBoxCount('unsaved');
 });
 
 $('boxes-undo').addEventListener('click', () => {
   const cls = document.querySelector('input[name=class]:checked').value;
   (boxes()[cls] || []).pop();
   redrawPhoto();
+  showBoxCount('unsaved');
 });
 
 $('boxes-save').addEventListener('click', async () => {
   const name = state.facade;
   const r = await step('Saving boxes', () =>
     api('PUT', `/api/facades/${encodeURIComponent(name)}/training`, state.training[name]));
+  $('boxes-info').dataset.count = String(r.boxes);
   $('boxes-info').textContent = `${r.boxes} boxes saved to ${r.saved}`;
 });
 
@@ -333,6 +341,7 @@ refresh()
   .then((p) => {
     if (p.outputs) showOutputs(p.outputs);
     status(p.project ? `Project ${p.dir}` : `New project in ${p.dir}: upload a plan drawing`);
+    document.body.dataset.readyMs = String(Math.round(performance.now()));
     document.body.dataset.ready = 'true';
   })
   .catch((e) => status(e.message, true));

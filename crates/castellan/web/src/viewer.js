@@ -76,7 +76,11 @@ export function showModel(container, outline, source) {
     const kinds = new Map();
     model.traverse((o) => {
       if (!o.isMesh) return;
-      const s = structureOf(o, root);
+      // Keyed by name: a structure's parts that are siblings (a gable roof's two slopes) are
+      // one entry.
+      // three.js makes node names unique (`hall1Roof_1`); userData.name keeps the glTF one.
+      const top = structureOf(o, root);
+      const s = ((top.userData && top.userData.name) || top.name || 'structure').replace(/Site$/, '');
       // The glTF node name is the VSG symbol (three.js keeps it in userData.name); imported
       // symbols carry their namespace (`tower1.masonry`), grouped here by the symbol alone.
       let named = o;
@@ -106,7 +110,7 @@ export function showModel(container, outline, source) {
       h1.textContent = 'Structures';
       outline.append(h1);
       for (const [s, meshes] of structures) {
-        checkbox(outline, 'structure', (s.name || 'structure').replace(/Site$/, ''), meshes.length, toggle(meshes));
+        checkbox(outline, 'structure', s, meshes.length, toggle(meshes));
       }
       const h2 = document.createElement('b');
       h2.textContent = 'Shapes by symbol';
