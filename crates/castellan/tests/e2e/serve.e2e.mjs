@@ -46,6 +46,7 @@ try {
   await page.waitForSelector('#plan-overlay[data-loaded=true]');
   const planSize = await page.$eval('#plan-overlay', (i) => [i.naturalWidth, i.naturalHeight]);
   check(planSize[0] > 0 && planSize[1] > 0, 'the plan overlay did not load');
+  figures.plan_info = await page.textContent('#plan-info');
   await page.locator('#plan').screenshot({ path: path.join(shots, 'plan.png') });
 
   // 2 façades: draw a box with the mouse and take it back, save, rectify, façade search
@@ -67,6 +68,7 @@ try {
   await page.waitForFunction(() => document.getElementById('boxes-info').textContent.includes('saved to'));
   await page.click('#facade-rectify');
   await page.waitForSelector('#rectify-overlay[data-loaded=true]');
+  figures.rectify_info = await page.textContent('#facade-info');
   await page.click('#facade-run');
   await page.waitForSelector('#facade-overlay[data-loaded=true]', { timeout: 120_000 });
   figures.facade_info = await page.textContent('#facade-info');
