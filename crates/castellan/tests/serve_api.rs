@@ -21,7 +21,10 @@ fn the_real_server_serves_the_page_the_project_and_refuses_traversal() {
     let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert_eq!(v["project"]["plan"], "plan.png");
 
-    for path in ["/files/..%2F..%2F..%2Fetc%2Fpasswd", "/files/%2Fetc%2Fpasswd"] {
+    for path in [
+        "/files/..%2F..%2F..%2Fetc%2Fpasswd",
+        "/files/%2Fetc%2Fpasswd",
+    ] {
         let (status, body) = server.request("GET", path, b"");
         assert_eq!(status, 403, "{path}");
         assert!(String::from_utf8_lossy(&body).contains("inside the project folder"));
@@ -31,7 +34,8 @@ fn the_real_server_serves_the_page_the_project_and_refuses_traversal() {
     let (status, _) = server.request("GET", "/files/../PROJECT.toml", b"");
     assert!(status == 403 || status == 404, "{status}");
 
-    let list = br#"[{"facade":"keep_south_near.png","facade_point":[255,235],"plan_points":[[320,303]]}]"#;
+    let list =
+        br#"[{"facade":"keep_south_near.png","facade_point":[255,235],"plan_points":[[320,303]]}]"#;
     let (status, body) = server.request("PUT", "/api/correspondences", list);
     assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
     let saved = std::fs::read_to_string(dir.join("PROJECT.toml")).unwrap();

@@ -33,7 +33,10 @@ fn the_demo_workflow_runs_in_chromium() {
     }
     let e2e = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/e2e");
     if !e2e.join("node_modules/playwright-core").is_dir() {
-        return missing(&format!("playwright-core is not installed: run `npm ci` in {}", e2e.display()));
+        return missing(&format!(
+            "playwright-core is not installed: run `npm ci` in {}",
+            e2e.display()
+        ));
     }
     let tmp = tempfile::tempdir().unwrap();
     let dir = demo_project(tmp.path());
@@ -64,7 +67,12 @@ fn the_demo_workflow_runs_in_chromium() {
     eprintln!("serve e2e figures: {figures}");
     assert_eq!(figures["structures"], DEMO_STRUCTURES);
     assert!(figures["model_pixel_fraction"].as_f64().unwrap() > 0.02);
-    for shot in ["plan.png", "facades.png", "correspondences.png", "model.png"] {
+    for shot in [
+        "plan.png",
+        "facades.png",
+        "correspondences.png",
+        "model.png",
+    ] {
         let img = image::open(shots.join(shot)).unwrap();
         assert!(img.width() > 100 && img.height() > 100, "{shot}");
     }
@@ -76,5 +84,8 @@ fn the_demo_workflow_runs_in_chromium() {
         estimate["structures"].as_array().unwrap().len(),
         DEMO_ESTIMATED_STRUCTURES
     );
-    assert!(dir.join("out/overlays/keep_south_near_facade.png").is_file());
+    assert!(
+        dir.join("out/overlays/keep_south_near_facade.png")
+            .is_file()
+    );
 }

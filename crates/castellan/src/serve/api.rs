@@ -1,7 +1,6 @@
-//! The HTTP API of `castellan serve` (docs/serve.md has the table): uploads, each pipeline stage
-//! with its overlay (plan ch. 5, rectification §3.1.1, façade search §3.1.2–3.1.7), training
-//! boxes and correspondences (§6.1.1) saved to the project, and the whole reconstruction.
-//! Pipeline work runs on a blocking thread holding the project's lock.
+//! The HTTP API of `castellan serve` (docs/serve.md has the table), part 1: the server's state,
+//! errors as JSON, the blocking runner holding the project's lock, the project, progress,
+//! uploads (checked by decoding) and files confined to the project. The stages are in stages.rs.
 
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
@@ -10,12 +9,11 @@ use axum::Json;
 use axum::extract::{Multipart, Path, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use facade::classify::Training;
-use integrate::project::{Correspondence, FacadeEntry, Project, TrainingSource};
+use integrate::project::{FacadeEntry, Project, TrainingSource};
 use serde_json::{Value, json};
 
 use super::store::{Store, upload_name};
-use crate::images::{MAX_ALLOC, MAX_SIDE, png, read_image};
+use crate::images::{MAX_ALLOC, MAX_SIDE};
 use crate::reconstruct_cmd::stem;
 
 /// The server's state: one project and what it is doing.
@@ -48,7 +46,7 @@ impl App {
 }
 
 /// An error answered as `{"error": message}` with a status.
-pub struct ApiError(StatusCode, String);
+pub struct ApiError(pub StatusCode, pub String);
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
@@ -56,14 +54,14 @@ impl IntoResponse for ApiError {
     }
 }
 
-fn err(status: StatusCode) -> impl Fn(anyhow::Error) -> ApiError {
+pub(super) fn err(status: StatusCode) -> impl Fn(anyhow::Error) -> ApiError {
     move |e| ApiError(status, format!("{e:#}"))
 }
 
-type Reply = Result<Json<Value>, ApiError>;
+pub(super) type Reply = Result<Json<Value>, ApiError>;
 
 /// Runs `work` on a blocking thread under the project lock, reporting it as step `step`.
-async fn blocking<T, F>(app: Arc<App>, step: &str, work: F) -> Result<T, ApiError>
+pub(super) async fn blocking<T, F>(app: Arc<App>, step: &str, work: F) -> Result<T, ApiError>
 where
     T: Send + 'static,
     F: FnOnce(&App) -> Result<T, ApiError> + Send + 'static,
@@ -94,11 +92,11 @@ where
     .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?
 }
 
-fn file_url(name: &str) -> String {
+pub(super) fn file_url(name: &str) -> String {
     format!("/files/{name}")
 }
 
-fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEntry, ApiError> {
+pub(super) fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEntry, ApiError> {
     p.facades.iter().find(|f| f.image == name).ok_or_else(|| {
         ApiError(
             StatusCode::NOT_FOUND,
@@ -121,7 +119,7 @@ pub async fn project(State(app): State<Arc<App>>) -> Reply {
             .existing("out/model.glb")
             .ok()
             .flatten()
-            .map(|_| outputs());
+            .map(|_| super::stages::outputs());
         Ok(Json(json!({
             "dir": app.store.dir.display().to_string(),
             "project": p,
@@ -254,232 +252,24 @@ fn check_image(name: &str, bytes: &[u8]) -> Result<(image::ImageFormat, u32, u32
     Ok((format, img.width(), img.height()))
 }
 
-fn write_png<P, C>(app: &App, name: &str, img: &image::ImageBuffer<P, C>) -> Result<(), ApiError>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    let bytes = png(img, std::path::Path::new(name)).map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-    app.store
-        .commit(None, vec![(name.to_string(), bytes)])
-        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
-}
-
-/// POST /api/plan: the plan stage (ch. 5) → label overlay.
-pub async fn plan(State(app): State<Arc<App>>) -> Reply {
-    blocking(app, "plan", |app| {
-        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let t = Instant::now();
-        let path = app.store.path(&p.plan).map_err(err(StatusCode::CONFLICT))?;
-        let image = read_image(&path).map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
-        let parsed = plan::parse(&image, &plan::Options::default()).map_err(|e| {
-            ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{}: {e}", p.plan))
-        })?;
-        let overlay = "out/overlays/plan_labels.png";
-        write_png(app, overlay, &plan::output::overlay(&parsed, &image.to_luma8()))?;
-        Ok(Json(json!({
-            "overlay": file_url(overlay),
-            "width": parsed.width, "height": parsed.height,
-            "faces": parsed.faces.len(), "edges": parsed.edges.len(),
-            "ms": t.elapsed().as_millis(),
-        })))
-    })
-    .await
-}
-
-/// POST /api/facades/{name}/rectify: §3.1.1 → line-family overlay and the rectified photo.
-pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
-    blocking(app, "rectify", move |app| {
-        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
-        let t = Instant::now();
-        let path = app.store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
-        let img = read_image(&path)
-            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
-            .to_rgb8();
-        let params = facade::rectify::RectifyParams::default();
-        let failed = |e: facade::FacadeError| {
-            ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{name}: rectification (§3.1.1): {e}"))
-        };
-        let r = match &f.lines {
-            Some(lines) => {
-                let lp = app.store.path(lines).map_err(err(StatusCode::CONFLICT))?;
-                let text = std::fs::read_to_string(&lp)
-                    .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{lines}: {e}")))?;
-                let manual = serde_json::from_str(&text)
-                    .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{lines}: {e}")))?;
-                facade::rectify::rectify_with_lines(img.width(), img.height(), &manual, &params)
-                    .map_err(failed)?
-            }
-            None => facade::rectify::rectify(&img, &params).map_err(failed)?,
-        };
-        let warped = r.warp(&img).map_err(failed)?;
-        let s = stem(&f.image);
-        let (overlay, rectified) = (
-            format!("out/overlays/{s}_lines.png"),
-            format!("out/{s}_rectified.png"),
-        );
-        write_png(app, &overlay, &facade::rectify::draw_overlay(&img, &r))?;
-        write_png(app, &rectified, &warped)?;
-        Ok(Json(json!({
-            "overlay": file_url(&overlay), "rectified": file_url(&rectified),
-            "width": r.width, "height": r.height,
-            "horizontal": r.horizontal.len(), "vertical": r.vertical.len(),
-            "ms": t.elapsed().as_millis(),
-        })))
-    })
-    .await
-}
-
-/// PUT /api/facades/{name}/training: the user's boxes (TRAINING.json, photo pixels).
-pub async fn training(
-    State(app): State<Arc<App>>,
-    Path(name): Path<String>,
-    Json(training): Json<Training>,
-) -> Reply {
-    blocking(app, "training", move |app| {
-        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
-        let path = app.store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
-        let (w, h) = image::image_dimensions(&path)
-            .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
-        // An empty set is a valid state to save (the user clears the boxes); otherwise check.
-        if training.classes.values().any(|b| !b.is_empty()) {
-            training
-                .boxes(w as usize, h as usize)
-                .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {e}")))?;
-        }
-        let file = match &f.training {
-            TrainingSource::File(file) => file.clone(),
-            TrainingSource::Inline(_) => format!("{}.training.json", stem(&f.image)),
-        };
-        for g in p.facades.iter_mut().filter(|g| g.image == name) {
-            g.training = TrainingSource::File(file.clone());
-        }
-        let bytes = serde_json::to_vec_pretty(&training).unwrap_or_default();
-        app.store
-            .commit(Some(&p), vec![(file.clone(), bytes)])
-            .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        let boxes: usize = training.classes.values().map(Vec::len).sum();
-        Ok(Json(json!({ "saved": file, "boxes": boxes })))
-    })
-    .await
-}
-
-/// POST /api/facades/{name}/facade: ch. 3 on one photo → the façade tree over the rectified photo.
-pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
-    blocking(app, "facade", move |app| {
-        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
-        let t = Instant::now();
-        let path = app.store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
-        let img = read_image(&path)
-            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
-            .to_rgb8();
-        let training = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
-        let lines = match &f.lines {
-            Some(l) => {
-                let lp = app.store.path(l).map_err(err(StatusCode::CONFLICT))?;
-                let text = std::fs::read_to_string(&lp)
-                    .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{l}: {e}")))?;
-                Some(
-                    serde_json::from_str(&text)
-                        .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{l}: {e}")))?,
-                )
-            }
-            None => None,
-        };
-        let e = integrate::photo::estimate_facade(&integrate::photo::FacadePhoto {
-            name: &f.image,
-            image: &img,
-            training: &training,
-            lines: lines.as_ref(),
-            rectified: f.rectified,
-            seed: p.seed.unwrap_or(0),
-        })
-        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
-        let overlay = format!("out/overlays/{}_facade.png", stem(&f.image));
-        write_png(
-            app,
-            &overlay,
-            &crate::facade_cmd::label_overlay(&e.rectified, &e.model.labels()),
-        )?;
-        let floors: usize = e.model.facades.iter().map(|f| f.floors.len()).sum();
-        let windows: usize = e
-            .model
-            .facades
-            .iter()
-            .flat_map(|f| &f.floors)
-            .map(|fl| fl.windows.len())
-            .sum();
-        Ok(Json(json!({
-            "overlay": file_url(&overlay), "facades": e.model.facades.len(),
-            "floors": floors, "windows": windows, "ms": t.elapsed().as_millis(),
-        })))
-    })
-    .await
-}
-
-/// PUT /api/correspondences: the whole list (§6.1.1), replacing the project's.
-pub async fn correspondences(
-    State(app): State<Arc<App>>,
-    Json(list): Json<Vec<Correspondence>>,
-) -> Reply {
-    blocking(app, "correspondences", move |app| {
-        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        p.correspondences = list;
-        app.store
-            .commit(Some(&p), vec![])
-            .map_err(err(StatusCode::BAD_REQUEST))?;
-        Ok(Json(json!({ "saved": p.correspondences.len() })))
-    })
-    .await
-}
-
-fn outputs() -> Value {
-    json!({
-        "report": file_url("out/index.html"), "glb": file_url("out/model.glb"),
-        "obj": file_url("out/model.obj"), "vsg": file_url("out/model.vsg"),
-        "json": file_url("out/estimate.json"), "stats": file_url("out/stats.json"),
-    })
-}
-
-/// POST /api/reconstruct: `castellan reconstruct PROJECT.toml -o out`.
-pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
-    blocking(app, "reconstruct", |app| {
-        app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let s = crate::reconstruct_cmd::reconstruct(
-            &app.store.dir.join(super::store::PROJECT_FILE),
-            &app.store.dir.join("out"),
-            None,
-        )
-        .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
-        let stages: serde_json::Map<String, Value> =
-            s.stages.iter().map(|(k, v)| (k.clone(), json!(v.round()))).collect();
-        Ok(Json(json!({
-            "outputs": outputs(),
-            "structures": s.estimate.structures.len(),
-            "terminals": s.terminals,
-            "stages_ms": stages,
-        })))
-    })
-    .await
-}
-
 /// GET /files/{*path}: a file inside the project folder.
 pub async fn file(State(app): State<Arc<App>>, Path(name): Path<String>) -> Response {
     let found = match app.store.existing(&name) {
         Err(e) => return ApiError(StatusCode::FORBIDDEN, format!("{e:#}")).into_response(),
         Ok(None) => {
-            return ApiError(StatusCode::NOT_FOUND, format!("no file \"{name}\" in the project"))
-                .into_response();
+            return ApiError(
+                StatusCode::NOT_FOUND,
+                format!("no file \"{name}\" in the project"),
+            )
+            .into_response();
         }
         Ok(Some(path)) => path,
     };
     match tokio::fs::read(&found).await {
         Ok(bytes) => ([(header::CONTENT_TYPE, content_type(&name))], bytes).into_response(),
-        Err(e) => ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")).into_response(),
+        Err(e) => {
+            ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")).into_response()
+        }
     }
 }
 

@@ -3,6 +3,7 @@
 //! web app — an HTTP API over one project folder and a page embedded in the binary.
 
 mod api;
+mod stages;
 mod store;
 #[cfg(test)]
 mod tests;
@@ -62,7 +63,10 @@ pub fn run(args: &ServeArgs) -> Result<()> {
             );
         }
         // Tests and scripts read this line for the port.
-        println!("castellan serve: http://{addr}/ (project {})", dir.display());
+        println!(
+            "castellan serve: http://{addr}/ (project {})",
+            dir.display()
+        );
         axum::serve(listener, app)
             .await
             .context("the server stopped")
@@ -72,18 +76,24 @@ pub fn run(args: &ServeArgs) -> Result<()> {
 pub fn router(app: Arc<api::App>) -> Router {
     let limit = app.max_upload;
     Router::new()
-        .route("/", get(|| async { asset("text/html; charset=utf-8", INDEX_HTML) }))
+        .route(
+            "/",
+            get(|| async { asset("text/html; charset=utf-8", INDEX_HTML) }),
+        )
         .route("/app.css", get(|| async { asset("text/css", APP_CSS) }))
-        .route("/app.js", get(|| async { asset("text/javascript", APP_JS) }))
+        .route(
+            "/app.js",
+            get(|| async { asset("text/javascript", APP_JS) }),
+        )
         .route("/api/project", get(api::project))
         .route("/api/progress", get(api::progress))
         .route("/api/upload", post(api::upload))
-        .route("/api/plan", post(api::plan))
-        .route("/api/facades/{name}/rectify", post(api::rectify))
-        .route("/api/facades/{name}/training", put(api::training))
-        .route("/api/facades/{name}/facade", post(api::facade_stage))
-        .route("/api/correspondences", put(api::correspondences))
-        .route("/api/reconstruct", post(api::reconstruct))
+        .route("/api/plan", post(stages::plan))
+        .route("/api/facades/{name}/rectify", post(stages::rectify))
+        .route("/api/facades/{name}/training", put(stages::training))
+        .route("/api/facades/{name}/facade", post(stages::facade_stage))
+        .route("/api/correspondences", put(stages::correspondences))
+        .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(api::file))
         .layer(DefaultBodyLimit::max(limit))
         .with_state(app)

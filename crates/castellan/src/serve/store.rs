@@ -117,7 +117,11 @@ impl Store {
 fn check_in_progress(p: &Project) -> Result<(), integrate::project::ProjectError> {
     let mut complete = p.clone();
     let mapped = |image: &str| p.correspondences.iter().any(|c| c.facade == image);
-    if p.facades.iter().enumerate().any(|(i, f)| p.facades[..i].iter().any(|g| g.image == f.image)) {
+    if p.facades
+        .iter()
+        .enumerate()
+        .any(|(i, f)| p.facades[..i].iter().any(|g| g.image == f.image))
+    {
         return Err(integrate::project::ProjectError::Invalid(
             "a [[facade]] image is listed twice".into(),
         ));
@@ -191,13 +195,19 @@ mod tests {
         ] {
             assert!(relative(bad).is_none(), "{bad}");
         }
-        assert_eq!(relative("out/model.glb"), Some(PathBuf::from("out/model.glb")));
+        assert_eq!(
+            relative("out/model.glb"),
+            Some(PathBuf::from("out/model.glb"))
+        );
     }
 
     #[test]
     fn upload_names_are_sanitised_and_carry_the_decoded_format() {
         use image::ImageFormat::{Jpeg, Png};
-        assert_eq!(upload_name("C:\\photos\\keep south.JPG", Jpeg), "keep_south.JPG");
+        assert_eq!(
+            upload_name("C:\\photos\\keep south.JPG", Jpeg),
+            "keep_south.JPG"
+        );
         assert_eq!(upload_name("../../evil.sh", Png), "evil.sh.png");
         assert_eq!(upload_name("..", Png), "upload.png");
     }

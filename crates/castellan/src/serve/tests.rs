@@ -85,10 +85,17 @@ async fn the_page_and_its_script_are_served_from_the_binary() {
     let html = String::from_utf8(html).unwrap();
     assert!(html.contains("/app.js") && html.contains("/app.css"));
     // Nothing from the network: no absolute URL in the page.
-    assert!(!html.contains("http://") && !html.contains("https://"), "{html}");
+    assert!(
+        !html.contains("http://") && !html.contains("https://"),
+        "{html}"
+    );
     let (s, js) = get(&app, "/app.js").await;
     assert_eq!(s, StatusCode::OK);
-    assert!(js.len() > 100_000, "three.js is bundled: {} bytes", js.len());
+    assert!(
+        js.len() > 100_000,
+        "three.js is bundled: {} bytes",
+        js.len()
+    );
 }
 
 #[tokio::test]
@@ -117,9 +124,15 @@ async fn files_outside_the_project_are_refused() {
         let (s, b) = get(&app, uri).await;
         assert_eq!(s, StatusCode::FORBIDDEN, "{uri}");
         let e: Value = serde_json::from_slice(&b).unwrap();
-        assert!(e["error"].as_str().unwrap().contains("inside the project"), "{e}");
+        assert!(
+            e["error"].as_str().unwrap().contains("inside the project"),
+            "{e}"
+        );
     }
-    assert_eq!(get(&app, "/files/nothing.png").await.0, StatusCode::NOT_FOUND);
+    assert_eq!(
+        get(&app, "/files/nothing.png").await.0,
+        StatusCode::NOT_FOUND
+    );
 }
 
 #[tokio::test]
@@ -150,7 +163,10 @@ async fn uploads_create_the_project_and_register_facades() {
     let (s, v) = upload(&app, "plan", "../My Plan.png", &png_bytes(50, 40)).await;
     assert_eq!(s, StatusCode::OK, "{v}");
     assert_eq!(v["name"], "My_Plan.png");
-    assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(50), Some(40)));
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(50), Some(40))
+    );
     let (s, v) = upload(&app, "facade", "keep.png", &png_bytes(40, 30)).await;
     assert_eq!(s, StatusCode::OK, "{v}");
     let p = saved_project(dir.path());
@@ -158,7 +174,12 @@ async fn uploads_create_the_project_and_register_facades() {
     assert_eq!(p.facades.len(), 1);
     assert!(dir.path().join("keep.training.json").exists());
     // Uploading the same photo again replaces it without listing it twice.
-    assert_eq!(upload(&app, "facade", "keep.png", &png_bytes(40, 30)).await.0, StatusCode::OK);
+    assert_eq!(
+        upload(&app, "facade", "keep.png", &png_bytes(40, 30))
+            .await
+            .0,
+        StatusCode::OK
+    );
     assert_eq!(saved_project(dir.path()).facades.len(), 1);
 }
 
@@ -167,14 +188,21 @@ async fn training_boxes_and_correspondences_are_checked_and_saved() {
     let dir = demo_project();
     let app = app(dir.path(), 1 << 20);
     let uri = "/api/facades/keep_south_near.png/training";
-    let (s, e) = json(&app, "PUT", uri, r#"{"classes":{"door":[[0,0,50,10]],"wall":[[0,0,4,4]]}}"#).await;
+    let (s, e) = json(
+        &app,
+        "PUT",
+        uri,
+        r#"{"classes":{"door":[[0,0,50,10]],"wall":[[0,0,4,4]]}}"#,
+    )
+    .await;
     assert_eq!(s, StatusCode::BAD_REQUEST, "{e}");
     let boxes = r#"{"classes":{"window":[[10,10,20,20]],"wall":[[30,30,60,60]]}}"#;
     let (s, v) = json(&app, "PUT", uri, boxes).await;
     assert_eq!(s, StatusCode::OK, "{v}");
-    let saved: Value =
-        serde_json::from_slice(&std::fs::read(dir.path().join("keep_south_near.training.json")).unwrap())
-            .unwrap();
+    let saved: Value = serde_json::from_slice(
+        &std::fs::read(dir.path().join("keep_south_near.training.json")).unwrap(),
+    )
+    .unwrap();
     assert_eq!(saved["classes"]["wall"][0][2], 60.0);
     let (s, _) = json(&app, "PUT", "/api/facades/nope.png/training", boxes).await;
     assert_eq!(s, StatusCode::NOT_FOUND);
@@ -247,7 +275,11 @@ async fn the_plan_stage_writes_its_label_overlay() {
 async fn a_stage_without_a_plan_is_a_conflict_not_a_crash() {
     let dir = tempfile::tempdir().unwrap();
     let app = app(dir.path(), 1 << 20);
-    for uri in ["/api/plan", "/api/reconstruct", "/api/facades/x.png/rectify"] {
+    for uri in [
+        "/api/plan",
+        "/api/reconstruct",
+        "/api/facades/x.png/rectify",
+    ] {
         let (s, e) = json(&app, "POST", uri, "").await;
         assert_eq!(s, StatusCode::CONFLICT, "{uri}: {e}");
         assert!(e["error"].as_str().unwrap().contains("plan"), "{e}");

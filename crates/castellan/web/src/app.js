@@ -26,7 +26,7 @@ async function api(method, url, body) {
   return data;
 }
 
-// Runs a step, showing the server's progress while it lasts and the outcome after.
+// Runs a step, showing the server's progress while it lasts and the outcome after; null on failure.
 async function step(label, work) {
   status(`${label}…`);
   const poll = setInterval(async () => {
@@ -38,8 +38,9 @@ async function step(label, work) {
     status(`${label}: done`);
     return out;
   } catch (e) {
+    // Shown to the user; callers get null and stop.
     status(`${label}: ${e.message}`, true);
-    throw e;
+    return null;
   } finally {
     clearInterval(poll);
   }
@@ -116,12 +117,13 @@ async function showPlan() {
 $('plan-file').addEventListener('change', async (ev) => {
   const file = ev.target.files[0];
   if (!file) return;
-  await upload('plan', file);
-  await refresh();
+  if (!(await upload('plan', file))) return;
+  await refresh().catch((e) => status(e.message, true));
 });
 
 $('plan-run').addEventListener('click', async () => {
   const r = await step('Parsing the plan', () => api('POST', '/api/plan'));
+  if (!r) return;
   $('plan-info').textContent = `${r.faces} regions, ${r.edges} edges in ${r.ms} ms`;
   await showOverlay('plan-overlay', r.overlay);
   markDone('plan');
@@ -176,6 +178,7 @@ $('facade-file').addEventListener('change', async (ev) => {
   const file = ev.target.files[0];
   if (!file) return;
   const r = await upload('facade', file);
+  if (!r) return;
   await refresh();
   await selectFacade(r.name);
 });
@@ -214,6 +217,7 @@ $('boxes-save').addEventListener('click', async () => {
   const name = state.facade;
   const r = await step('Saving boxes', () =>
     api('PUT', `/api/facades/${encodeURIComponent(name)}/training`, state.training[name]));
+  if (!r) return;
   $('boxes-info').dataset.count = String(r.boxes);
   $('boxes-info').textContent = `${r.boxes} boxes saved to ${r.saved}`;
 });
@@ -221,6 +225,7 @@ $('boxes-save').addEventListener('click', async () => {
 $('facade-rectify').addEventListener('click', async () => {
   const name = state.facade;
   const r = await step('Rectifying', () => api('POST', `/api/facades/${encodeURIComponent(name)}/rectify`));
+  if (!r) return;
   $('facade-info').textContent =
     `${r.horizontal} horizontal, ${r.vertical} vertical segments; ${r.width}×${r.height} in ${r.ms} ms`;
   await showOverlay('rectify-overlay', r.overlay);
@@ -229,6 +234,7 @@ $('facade-rectify').addEventListener('click', async () => {
 $('facade-run').addEventListener('click', async () => {
   const name = state.facade;
   const r = await step('Façade search', () => api('POST', `/api/facades/${encodeURIComponent(name)}/facade`));
+  if (!r) return;
   $('facade-info').textContent = `${r.facades} façade(s), ${r.floors} floor(s), ${r.windows} window(s) in ${r.ms} ms`;
   await showOverlay('facade-overlay', r.overlay);
   markDone('facades');
@@ -291,6 +297,7 @@ $('corr-clear').addEventListener('click', () => { state.pending = null; drawCorr
 
 $('corr-save').addEventListener('click', async () => {
   const r = await step('Saving correspondences', () => api('PUT', '/api/correspondences', state.corr));
+  if (!r) return;
   $('corr-info').textContent = `${r.saved} saved`;
   markDone('correspondences');
 });
@@ -312,6 +319,7 @@ function showOutputs(o) {
 
 $('reconstruct').addEventListener('click', async () => {
   const r = await step('Reconstructing', () => api('POST', '/api/reconstruct'));
+  if (!r) return;
   const times = Object.entries(r.stages_ms).map(([k, v]) => `${k} ${v} ms`).join(', ');
   $('reconstruct-info').textContent = `${r.structures} structures, ${r.terminals} terminals (${times})`;
   showOutputs(r.outputs);
