@@ -39,7 +39,8 @@ try {
   await page.goto(url);
   await page.waitForSelector('body[data-ready=true]');
   figures.time_to_interactive_ms = Number(await page.getAttribute('body', 'data-ready-ms'));
-  check(figures.time_to_interactive_ms < 2000, `interactive after ${figures.time_to_interactive_ms} ms (> 2 s)`);
+  // Reported, not asserted: speed is measured, never asserted in tests (docs/serve.md, Measured).
+  check(figures.time_to_interactive_ms > 0, 'the page reports when it became interactive');
 
   // 1 plan
   await page.click('#plan-run');
