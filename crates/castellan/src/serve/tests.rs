@@ -285,3 +285,51 @@ async fn a_stage_without_a_plan_is_a_conflict_not_a_crash() {
         assert!(e["error"].as_str().unwrap().contains("plan"), "{e}");
     }
 }
+
+#[tokio::test]
+async fn the_facade_stages_write_their_overlays() {
+    let dir = demo_project();
+    let app = app(dir.path(), 1 << 20);
+    let (s, r) = json(&app, "POST", "/api/facades/keep_south_near.png/rectify", "").await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    let (_, png) = get(&app, r["overlay"].as_str().unwrap()).await;
+    let overlay = image::load_from_memory(&png).unwrap();
+    assert_eq!(
+        (overlay.width(), overlay.height()),
+        (510, 470),
+        "drawn over the photo"
+    );
+    let (_, png) = get(&app, r["rectified"].as_str().unwrap()).await;
+    let rectified = image::load_from_memory(&png).unwrap();
+    assert_eq!(
+        (u64::from(rectified.width()), u64::from(rectified.height())),
+        (r["width"].as_u64().unwrap(), r["height"].as_u64().unwrap())
+    );
+    let (s, f) = json(&app, "POST", "/api/facades/keep_south_near.png/facade", "").await;
+    assert_eq!(s, StatusCode::OK, "{f}");
+    // The keep's south façade has 3 floors of 4 windows (examples/demo/TRUTH.json).
+    assert!(f["windows"].as_u64().unwrap() >= 12, "{f}");
+    assert_eq!(
+        get(&app, f["overlay"].as_str().unwrap()).await.0,
+        StatusCode::OK
+    );
+}
+
+#[tokio::test]
+async fn reconstruct_names_a_facade_still_without_correspondence() {
+    let dir = demo_project();
+    let app = app(dir.path(), 1 << 20);
+    let only_near =
+        r#"[{"facade":"keep_south_near.png","facade_point":[255,235],"plan_points":[[320,303]]}]"#;
+    assert_eq!(
+        json(&app, "PUT", "/api/correspondences", only_near).await.0,
+        StatusCode::OK
+    );
+    let (s, e) = json(&app, "POST", "/api/reconstruct", "").await;
+    assert_eq!(s, StatusCode::UNPROCESSABLE_ENTITY, "{e}");
+    assert!(
+        e["error"].as_str().unwrap().contains("keep_south_far.png"),
+        "{e}"
+    );
+    assert!(!dir.path().join("out/model.glb").exists());
+}
