@@ -1,7 +1,8 @@
-//! Builds castellan's browser code (web/: the model viewer, three.js from the npm registry) into
-//! one script, OUT_DIR/viewer.js, that the binary embeds — so the installed binary needs
-//! nothing at run time. The build needs Node.js and npm (`npm ci` against web/package-lock.json,
-//! then esbuild); set CASTELLAN_VIEWER_JS to a viewer.js built elsewhere to skip them.
+//! Builds castellan's browser code (web/: the report's model viewer and the `castellan serve`
+//! app, three.js from the npm registry) into two scripts, OUT_DIR/viewer.js and OUT_DIR/app.js,
+//! that the binary embeds — so the installed binary needs nothing at run time. The build needs
+//! Node.js and npm (`npm ci` against web/package-lock.json, then esbuild); set
+//! CASTELLAN_VIEWER_JS and CASTELLAN_APP_JS to scripts built elsewhere to skip them.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -11,16 +12,23 @@ fn main() {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets it"));
     let web = manifest.join("web");
     println!("cargo:rerun-if-env-changed=CASTELLAN_VIEWER_JS");
+    println!("cargo:rerun-if-env-changed=CASTELLAN_APP_JS");
     for f in ["package.json", "package-lock.json", "src"] {
         println!("cargo:rerun-if-changed=web/{f}");
     }
-    if let Some(prebuilt) = std::env::var_os("CASTELLAN_VIEWER_JS") {
-        std::fs::copy(&prebuilt, out.join("viewer.js")).unwrap_or_else(|e| {
-            panic!(
-                "CASTELLAN_VIEWER_JS={}: {e}",
-                Path::new(&prebuilt).display()
-            )
-        });
+    let prebuilt = [
+        ("CASTELLAN_VIEWER_JS", "viewer.js"),
+        ("CASTELLAN_APP_JS", "app.js"),
+    ]
+    .map(|(var, file)| (var, file, std::env::var_os(var)));
+    if prebuilt.iter().any(|(_, _, p)| p.is_some()) {
+        for (var, file, path) in prebuilt {
+            let path = path.unwrap_or_else(|| {
+                panic!("{var} is not set: set both CASTELLAN_VIEWER_JS and CASTELLAN_APP_JS, or neither")
+            });
+            std::fs::copy(&path, out.join(file))
+                .unwrap_or_else(|e| panic!("{var}={}: {e}", Path::new(&path).display()));
+        }
         return;
     }
     let work = out.join("web");
@@ -52,7 +60,7 @@ fn npm(dir: &Path, args: &[&str], out: &Path) {
         .status()
         .unwrap_or_else(|e| {
             panic!(
-                "castellan's build runs npm to build its web viewer (crates/castellan/web) and could not start it ({e}). Install Node.js 18+ and npm (Debian: apt-get install nodejs npm), or set CASTELLAN_VIEWER_JS to a viewer.js built elsewhere."
+                "castellan's build runs npm to build its web viewer (crates/castellan/web) and could not start it ({e}). Install Node.js 18+ and npm (Debian: apt-get install nodejs npm), or set CASTELLAN_VIEWER_JS and CASTELLAN_APP_JS to scripts built elsewhere."
             )
         });
     assert!(

@@ -38,6 +38,8 @@ pub enum Command {
     Reconstruct(crate::reconstruct_cmd::ReconstructArgs),
     /// Reconstruct the bundled example castle and compare the estimate with its known truth.
     Demo(crate::demo_cmd::DemoArgs),
+    /// The interactive workflow in the browser: a local server for one project folder.
+    Serve(crate::serve::ServeArgs),
 }
 
 #[derive(Debug, Subcommand)]

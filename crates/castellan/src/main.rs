@@ -13,6 +13,7 @@ mod plan_cmd;
 mod reconstruct_cmd;
 mod rectify_cmd;
 mod report;
+mod serve;
 mod vsg_cmd;
 
 use std::process::ExitCode;
@@ -31,6 +32,7 @@ fn main() -> ExitCode {
         cli::Command::Gothic(args) => gothic_cmd::run(&args),
         cli::Command::Reconstruct(args) => reconstruct_cmd::run(&args),
         cli::Command::Demo(args) => demo_cmd::run(&args),
+        cli::Command::Serve(args) => serve::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

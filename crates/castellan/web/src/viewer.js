@@ -1,6 +1,6 @@
-// castellan's model viewer: a glTF model embedded in the page (base64, so the report opens
-// from disk with no server and no network), orbit controls, and an outline to hide or show
-// each structure and each kind of terminal shape.
+// castellan's model viewer: a glTF model, either embedded in the page (base64, so the report
+// opens from disk with no server and no network) or fetched by URL (`castellan serve`), with
+// orbit controls and an outline to hide or show each structure and each kind of terminal shape.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -19,8 +19,9 @@ function structureOf(node, root) {
   return n;
 }
 
-function checkbox(list, label, count, onChange) {
+function checkbox(list, group, label, count, onChange) {
   const row = document.createElement('label');
+  row.dataset.group = group;
   row.style.display = 'block';
   const box = document.createElement('input');
   box.type = 'checkbox';
@@ -30,11 +31,12 @@ function checkbox(list, label, count, onChange) {
   list.append(row);
 }
 
-function start() {
-  const data = document.getElementById('castellan-model');
-  const container = document.getElementById('viewer');
-  if (!data || !container) return;
-  const outline = document.getElementById('outline');
+// Shows a model in `container` (emptied first) with its outline in `outline` (optional).
+// `source` is the glb's bytes (ArrayBuffer) or its URL.
+export function showModel(container, outline, source) {
+  container.replaceChildren();
+  if (outline) outline.replaceChildren();
+  container.dataset.ready = 'false';
   const width = container.clientWidth || 800;
   const height = container.clientHeight || 500;
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -56,7 +58,7 @@ function start() {
   };
   controls.addEventListener('change', render);
 
-  new GLTFLoader().parse(decode(data.textContent), '', (gltf) => {
+  const loaded = (gltf) => {
     const model = gltf.scene;
     scene.add(model);
     const box = new THREE.Box3().setFromObject(model);
@@ -74,7 +76,11 @@ function start() {
     const kinds = new Map();
     model.traverse((o) => {
       if (!o.isMesh) return;
-      const s = structureOf(o, root);
+      // Keyed by name: a structure's parts that are siblings (a gable roof's two slopes) are
+      // one entry.
+      // three.js makes node names unique (`hall1Roof_1`); userData.name keeps the glTF one.
+      const top = structureOf(o, root);
+      const s = ((top.userData && top.userData.name) || top.name || 'structure').replace(/Site$/, '');
       // The glTF node name is the VSG symbol (three.js keeps it in userData.name); imported
       // symbols carry their namespace (`tower1.masonry`), grouped here by the symbol alone.
       let named = o;
@@ -104,22 +110,26 @@ function start() {
       h1.textContent = 'Structures';
       outline.append(h1);
       for (const [s, meshes] of structures) {
-        checkbox(outline, (s.name || 'structure').replace(/Site$/, ''), meshes.length, toggle(meshes));
+        checkbox(outline, 'structure', s, meshes.length, toggle(meshes));
       }
       const h2 = document.createElement('b');
       h2.textContent = 'Shapes by symbol';
       outline.append(h2);
       for (const [k, meshes] of [...kinds].sort((a, b) => a[0].localeCompare(b[0]))) {
-        checkbox(outline, k, meshes.length, toggle(meshes));
+        checkbox(outline, 'symbol', k, meshes.length, toggle(meshes));
       }
     }
     container.dataset.meshes = String(structures.size ? [...structures.values()].flat().length : 0);
     container.dataset.structures = String(structures.size);
     render();
     container.dataset.ready = 'true';
-  }, (err) => {
+  };
+  const failed = (err) => {
+    container.dataset.ready = 'error';
     container.textContent = `The model could not be shown: ${err.message || err}`;
-  });
+  };
+  if (typeof source === 'string') new GLTFLoader().load(source, loaded, undefined, failed);
+  else new GLTFLoader().parse(source, '', loaded, failed);
   // Frame rate probe for tests: renders `n` frames and reports frames per second.
   window.castellanFps = (n = 60) => new Promise((resolve) => {
     const t0 = performance.now();
@@ -133,6 +143,14 @@ function start() {
     };
     requestAnimationFrame(step);
   });
+}
+
+// The report: the model embedded in a script element.
+function start() {
+  const data = document.getElementById('castellan-model');
+  const container = document.getElementById('viewer');
+  if (!data || !container) return;
+  showModel(container, document.getElementById('outline'), decode(data.textContent));
 }
 
 if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', start);

@@ -1,0 +1,292 @@
+//! The HTTP API of `castellan serve` (docs/serve.md has the table), part 1: the server's state,
+//! errors as JSON, the blocking runner holding the project's lock, the project, progress,
+//! uploads (checked by decoding) and files confined to the project. The stages are in stages.rs.
+
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Instant;
+
+use axum::Json;
+use axum::extract::{Multipart, Path, State};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use integrate::project::{FacadeEntry, Project, TrainingSource};
+use serde_json::{Value, json};
+
+use super::store::{Store, upload_name};
+use crate::images::{MAX_ALLOC, MAX_SIDE};
+use crate::reconstruct_cmd::stem;
+
+/// The server's state: one project and what it is doing.
+pub struct App {
+    pub store: Store,
+    pub max_upload: usize,
+    progress: Mutex<Progress>,
+}
+
+/// What the page polls while a long step runs.
+#[derive(Default, Clone, serde::Serialize)]
+struct Progress {
+    /// The step running now.
+    running: Option<String>,
+    #[serde(skip)]
+    started: Option<Instant>,
+    elapsed_ms: u128,
+    /// The last step that ended, with its outcome.
+    last: Option<Value>,
+}
+
+impl App {
+    pub fn new(store: Store, max_upload: usize) -> Arc<App> {
+        Arc::new(App {
+            store,
+            max_upload,
+            progress: Mutex::new(Progress::default()),
+        })
+    }
+}
+
+/// An error answered as `{"error": message}` with a status.
+pub struct ApiError(pub StatusCode, pub String);
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        (self.0, Json(json!({ "error": self.1 }))).into_response()
+    }
+}
+
+pub(super) fn err(status: StatusCode) -> impl Fn(anyhow::Error) -> ApiError {
+    move |e| ApiError(status, format!("{e:#}"))
+}
+
+pub(super) type Reply = Result<Json<Value>, ApiError>;
+
+/// Runs `work` on a blocking thread under the project lock, reporting it as step `step`.
+pub(super) async fn blocking<T, F>(app: Arc<App>, step: &str, work: F) -> Result<T, ApiError>
+where
+    T: Send + 'static,
+    F: FnOnce(&App) -> Result<T, ApiError> + Send + 'static,
+{
+    let step = step.to_string();
+    let name = step.clone();
+    tokio::task::spawn_blocking(move || {
+        let _guard = app.store.lock();
+        let set = |p: Progress| *app.progress.lock().unwrap_or_else(PoisonError::into_inner) = p;
+        let t = Instant::now();
+        set(Progress {
+            running: Some(step.clone()),
+            started: Some(t),
+            ..Default::default()
+        });
+        let result = work(&app);
+        let outcome = match &result {
+            Ok(_) => json!({ "step": step, "ok": true, "ms": t.elapsed().as_millis() }),
+            Err(ApiError(_, m)) => json!({ "step": step, "ok": false, "error": m }),
+        };
+        set(Progress {
+            last: Some(outcome),
+            ..Default::default()
+        });
+        result
+    })
+    .await
+    .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?
+}
+
+pub(super) fn file_url(name: &str) -> String {
+    format!("/files/{name}")
+}
+
+pub(super) fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEntry, ApiError> {
+    p.facades.iter().find(|f| f.image == name).ok_or_else(|| {
+        ApiError(
+            StatusCode::NOT_FOUND,
+            format!("no façade \"{name}\" in the project"),
+        )
+    })
+}
+
+/// GET /api/project
+pub async fn project(State(app): State<Arc<App>>) -> Reply {
+    blocking(app, "project", |app| {
+        let p = app.store.load().map_err(err(StatusCode::CONFLICT))?;
+        let mut training = serde_json::Map::new();
+        for f in p.iter().flat_map(|p| &p.facades) {
+            let t = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
+            training.insert(f.image.clone(), serde_json::to_value(t).unwrap_or_default());
+        }
+        let model = app
+            .store
+            .existing("out/model.glb")
+            .ok()
+            .flatten()
+            .map(|_| super::stages::outputs());
+        Ok(Json(json!({
+            "dir": app.store.dir.display().to_string(),
+            "project": p,
+            "training": training,
+            "outputs": model,
+        })))
+    })
+    .await
+}
+
+/// GET /api/progress
+pub async fn progress(State(app): State<Arc<App>>) -> Json<Value> {
+    let mut p = app
+        .progress
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clone();
+    p.elapsed_ms = p.started.map(|t| t.elapsed().as_millis()).unwrap_or(0);
+    Json(serde_json::to_value(p).unwrap_or_default())
+}
+
+/// POST /api/upload: multipart fields `kind` (`plan` or `facade`) and `file`.
+pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
+    let mut kind = None;
+    let mut file = None;
+    loop {
+        let field = match form.next_field().await {
+            Ok(Some(f)) => f,
+            Ok(None) => break,
+            Err(e) => return Err(multipart_error(&app, e)),
+        };
+        match field.name() {
+            Some("kind") => kind = Some(field.text().await.map_err(|e| multipart_error(&app, e))?),
+            Some("file") => {
+                let name = field.file_name().unwrap_or("upload").to_string();
+                let bytes = field.bytes().await.map_err(|e| multipart_error(&app, e))?;
+                file = Some((name, bytes));
+            }
+            _ => {}
+        }
+    }
+    let bad = |m: &str| ApiError(StatusCode::BAD_REQUEST, m.to_string());
+    let kind = kind.ok_or_else(|| bad("the upload has no `kind` field (plan or facade)"))?;
+    if kind != "plan" && kind != "facade" {
+        return Err(bad("`kind` must be plan or facade"));
+    }
+    let (client_name, bytes) = file.ok_or_else(|| bad("the upload has no `file` field"))?;
+    blocking(app, "upload", move |app| {
+        let (format, width, height) = check_image(&client_name, &bytes)?;
+        let name = upload_name(&client_name, format);
+        let mut project = app.store.load().map_err(err(StatusCode::CONFLICT))?;
+        let mut files = vec![(name.clone(), bytes.to_vec())];
+        match (kind.as_str(), project.as_mut()) {
+            ("plan", Some(p)) => p.plan = name.clone(),
+            ("plan", None) => {
+                project = Some(Project {
+                    plan: name.clone(),
+                    scale: None,
+                    seed: None,
+                    facades: vec![],
+                    gothics: vec![],
+                    correspondences: vec![],
+                    textures: vec![],
+                })
+            }
+            (_, None) => {
+                return Err(ApiError(
+                    StatusCode::CONFLICT,
+                    "upload the plan drawing before the façade photos".into(),
+                ));
+            }
+            (_, Some(p)) => {
+                if !p.facades.iter().any(|f| f.image == name) {
+                    let training = format!("{}.training.json", stem(&name));
+                    if app.store.existing(&training).ok().flatten().is_none() {
+                        files.push((training.clone(), br#"{"classes": {}}"#.to_vec()));
+                    }
+                    p.facades.push(FacadeEntry {
+                        image: name.clone(),
+                        training: TrainingSource::File(training),
+                        lines: None,
+                        rectified: false,
+                    });
+                }
+            }
+        }
+        app.store
+            .commit(project.as_ref(), files)
+            .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+        Ok(Json(json!({
+            "name": name, "kind": kind, "width": width, "height": height, "url": file_url(&name),
+        })))
+    })
+    .await
+}
+
+fn multipart_error(app: &App, e: axum::extract::multipart::MultipartError) -> ApiError {
+    let status = e.status();
+    if status == StatusCode::PAYLOAD_TOO_LARGE {
+        ApiError(
+            status,
+            format!(
+                "the upload is larger than the limit of {} MB",
+                app.max_upload >> 20
+            ),
+        )
+    } else {
+        ApiError(status, format!("not a valid upload: {}", e.body_text()))
+    }
+}
+
+/// Decodes the upload (bounded like every image castellan reads) to prove it is an image.
+fn check_image(name: &str, bytes: &[u8]) -> Result<(image::ImageFormat, u32, u32), ApiError> {
+    let unsupported = |m: String| ApiError(StatusCode::UNSUPPORTED_MEDIA_TYPE, m);
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| unsupported(format!("{name}: {e}")))?;
+    let format = reader.format().ok_or_else(|| {
+        unsupported(format!(
+            "{name}: not an image castellan reads (PNG, JPEG or PNM)"
+        ))
+    })?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_SIDE);
+    limits.max_image_height = Some(MAX_SIDE);
+    limits.max_alloc = Some(MAX_ALLOC);
+    reader.limits(limits);
+    let img = reader
+        .decode()
+        .map_err(|e| unsupported(format!("{name}: not a readable image ({e})")))?;
+    Ok((format, img.width(), img.height()))
+}
+
+/// GET /files/{*path}: a file inside the project folder.
+pub async fn file(State(app): State<Arc<App>>, Path(name): Path<String>) -> Response {
+    let found = match app.store.existing(&name) {
+        Err(e) => return ApiError(StatusCode::FORBIDDEN, format!("{e:#}")).into_response(),
+        Ok(None) => {
+            return ApiError(
+                StatusCode::NOT_FOUND,
+                format!("no file \"{name}\" in the project"),
+            )
+            .into_response();
+        }
+        Ok(Some(path)) => path,
+    };
+    match tokio::fs::read(&found).await {
+        Ok(bytes) => ([(header::CONTENT_TYPE, content_type(&name))], bytes).into_response(),
+        Err(e) => {
+            ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")).into_response()
+        }
+    }
+}
+
+fn content_type(name: &str) -> &'static str {
+    let ext = std::path::Path::new(name)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "png" => "image/png",
+        "jpg" | "jpeg" => "image/jpeg",
+        "html" => "text/html; charset=utf-8",
+        "json" => "application/json",
+        "svg" => "image/svg+xml",
+        "glb" => "model/gltf-binary",
+        "toml" | "vsg" | "obj" | "mtl" | "txt" => "text/plain; charset=utf-8",
+        _ => "application/octet-stream",
+    }
+}

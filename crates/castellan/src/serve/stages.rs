@@ -1,0 +1,247 @@
+//! The HTTP API of `castellan serve`, part 2: each pipeline stage with its overlay — plan
+//! (ch. 5), rectification (§3.1.1), façade search (§3.1.2–3.1.7) — the user's training boxes and
+//! correspondences (§6.1.1) saved to the project, and the whole reconstruction (ch. 6–7).
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use axum::Json;
+use axum::extract::{Path, State};
+use axum::http::StatusCode;
+use facade::classify::Training;
+use facade::rectify::ManualLines;
+use integrate::project::{Correspondence, FacadeEntry, TrainingSource};
+use serde_json::{Value, json};
+
+use super::api::{ApiError, App, Reply, blocking, err, file_url, find_facade};
+use crate::images::{png, read_image};
+use crate::reconstruct_cmd::stem;
+
+/// The façade's LINES.json (user-set rectification segments), if it names one.
+fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiError> {
+    let Some(name) = &f.lines else {
+        return Ok(None);
+    };
+    let path = app.store.path(name).map_err(err(StatusCode::CONFLICT))?;
+    let conflict = |e: String| ApiError(StatusCode::CONFLICT, format!("{name}: {e}"));
+    let text = std::fs::read_to_string(&path).map_err(|e| conflict(e.to_string()))?;
+    serde_json::from_str(&text)
+        .map(Some)
+        .map_err(|e| conflict(e.to_string()))
+}
+
+fn write_png<P, C>(app: &App, name: &str, img: &image::ImageBuffer<P, C>) -> Result<(), ApiError>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
+{
+    let bytes =
+        png(img, std::path::Path::new(name)).map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+    app.store
+        .commit(None, vec![(name.to_string(), bytes)])
+        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
+}
+
+/// POST /api/plan: the plan stage (ch. 5) → label overlay.
+pub async fn plan(State(app): State<Arc<App>>) -> Reply {
+    blocking(app, "plan", |app| {
+        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let t = Instant::now();
+        let path = app.store.path(&p.plan).map_err(err(StatusCode::CONFLICT))?;
+        let image = read_image(&path).map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
+        let parsed = plan::parse(&image, &plan::Options::default())
+            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{}: {e}", p.plan)))?;
+        let overlay = "out/overlays/plan_labels.png";
+        write_png(
+            app,
+            overlay,
+            &plan::output::overlay(&parsed, &image.to_luma8()),
+        )?;
+        Ok(Json(json!({
+            "overlay": file_url(overlay),
+            "width": parsed.width, "height": parsed.height,
+            "faces": parsed.faces.len(), "edges": parsed.edges.len(),
+            "ms": t.elapsed().as_millis(),
+        })))
+    })
+    .await
+}
+
+/// POST /api/facades/{name}/rectify: §3.1.1 → line-family overlay and the rectified photo.
+pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
+    blocking(app, "rectify", move |app| {
+        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let f = find_facade(&p, &name)?;
+        let t = Instant::now();
+        let path = app
+            .store
+            .path(&f.image)
+            .map_err(err(StatusCode::CONFLICT))?;
+        let img = read_image(&path)
+            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
+            .to_rgb8();
+        let params = facade::rectify::RectifyParams::default();
+        let failed = |e: facade::FacadeError| {
+            ApiError(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                format!("{name}: rectification (§3.1.1): {e}"),
+            )
+        };
+        let r = match read_lines(app, f)? {
+            Some(manual) => {
+                facade::rectify::rectify_with_lines(img.width(), img.height(), &manual, &params)
+                    .map_err(failed)?
+            }
+            None => facade::rectify::rectify(&img, &params).map_err(failed)?,
+        };
+        let warped = r.warp(&img).map_err(failed)?;
+        let s = stem(&f.image);
+        let (overlay, rectified) = (
+            format!("out/overlays/{s}_lines.png"),
+            format!("out/{s}_rectified.png"),
+        );
+        write_png(app, &overlay, &facade::rectify::draw_overlay(&img, &r))?;
+        write_png(app, &rectified, &warped)?;
+        Ok(Json(json!({
+            "overlay": file_url(&overlay), "rectified": file_url(&rectified),
+            "width": r.width, "height": r.height,
+            "horizontal": r.horizontal.len(), "vertical": r.vertical.len(),
+            "ms": t.elapsed().as_millis(),
+        })))
+    })
+    .await
+}
+
+/// PUT /api/facades/{name}/training: the user's boxes (TRAINING.json, photo pixels).
+pub async fn training(
+    State(app): State<Arc<App>>,
+    Path(name): Path<String>,
+    Json(training): Json<Training>,
+) -> Reply {
+    blocking(app, "training", move |app| {
+        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let f = find_facade(&p, &name)?;
+        let path = app
+            .store
+            .path(&f.image)
+            .map_err(err(StatusCode::CONFLICT))?;
+        let (w, h) = image::image_dimensions(&path)
+            .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+        // An empty set is a valid state to save (the user clears the boxes); otherwise check.
+        if training.classes.values().any(|b| !b.is_empty()) {
+            training
+                .boxes(w as usize, h as usize)
+                .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {e}")))?;
+        }
+        let file = match &f.training {
+            TrainingSource::File(file) => file.clone(),
+            TrainingSource::Inline(_) => format!("{}.training.json", stem(&f.image)),
+        };
+        for g in p.facades.iter_mut().filter(|g| g.image == name) {
+            g.training = TrainingSource::File(file.clone());
+        }
+        let bytes = serde_json::to_vec_pretty(&training).unwrap_or_default();
+        app.store
+            .commit(Some(&p), vec![(file.clone(), bytes)])
+            .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+        let boxes: usize = training.classes.values().map(Vec::len).sum();
+        Ok(Json(json!({ "saved": file, "boxes": boxes })))
+    })
+    .await
+}
+
+/// POST /api/facades/{name}/facade: ch. 3 on one photo → the façade tree over the rectified photo.
+pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
+    blocking(app, "facade", move |app| {
+        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let f = find_facade(&p, &name)?;
+        let t = Instant::now();
+        let path = app
+            .store
+            .path(&f.image)
+            .map_err(err(StatusCode::CONFLICT))?;
+        let img = read_image(&path)
+            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
+            .to_rgb8();
+        let training = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
+        let lines = read_lines(app, f)?;
+        let e = integrate::photo::estimate_facade(&integrate::photo::FacadePhoto {
+            name: &f.image,
+            image: &img,
+            training: &training,
+            lines: lines.as_ref(),
+            rectified: f.rectified,
+            seed: p.seed.unwrap_or(0),
+        })
+        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let overlay = format!("out/overlays/{}_facade.png", stem(&f.image));
+        write_png(
+            app,
+            &overlay,
+            &crate::facade_cmd::label_overlay(&e.rectified, &e.model.labels()),
+        )?;
+        let floors: usize = e.model.facades.iter().map(|f| f.floors.len()).sum();
+        let windows: usize = e
+            .model
+            .facades
+            .iter()
+            .flat_map(|f| &f.floors)
+            .map(|fl| fl.windows.len())
+            .sum();
+        Ok(Json(json!({
+            "overlay": file_url(&overlay), "facades": e.model.facades.len(),
+            "floors": floors, "windows": windows, "ms": t.elapsed().as_millis(),
+        })))
+    })
+    .await
+}
+
+/// PUT /api/correspondences: the whole list (§6.1.1), replacing the project's.
+pub async fn correspondences(
+    State(app): State<Arc<App>>,
+    Json(list): Json<Vec<Correspondence>>,
+) -> Reply {
+    blocking(app, "correspondences", move |app| {
+        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        p.correspondences = list;
+        app.store
+            .commit(Some(&p), vec![])
+            .map_err(err(StatusCode::BAD_REQUEST))?;
+        Ok(Json(json!({ "saved": p.correspondences.len() })))
+    })
+    .await
+}
+
+pub(super) fn outputs() -> Value {
+    json!({
+        "report": file_url("out/index.html"), "glb": file_url("out/model.glb"),
+        "obj": file_url("out/model.obj"), "vsg": file_url("out/model.vsg"),
+        "json": file_url("out/estimate.json"), "stats": file_url("out/stats.json"),
+    })
+}
+
+/// POST /api/reconstruct: `castellan reconstruct PROJECT.toml -o out`.
+pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
+    blocking(app, "reconstruct", |app| {
+        app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let s = crate::reconstruct_cmd::reconstruct(
+            &app.store.dir.join(super::store::PROJECT_FILE),
+            &app.store.dir.join("out"),
+            None,
+        )
+        .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
+        let stages: serde_json::Map<String, Value> = s
+            .stages
+            .iter()
+            .map(|(k, v)| (k.clone(), json!(v.round())))
+            .collect();
+        Ok(Json(json!({
+            "outputs": outputs(),
+            "structures": s.estimate.structures.len(),
+            "terminals": s.terminals,
+            "stages_ms": stages,
+        })))
+    })
+    .await
+}
