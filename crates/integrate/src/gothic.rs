@@ -5,12 +5,12 @@
 
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::{GothicEstimate, GothicParams, VsgOptions, estimate, to_vsg};
-use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
+use facade::rectify::{ManualLines, Rectification};
 use image::RgbImage;
 use nalgebra::Matrix3;
 
 use crate::IntegrateError;
-use crate::photo::map_box;
+use crate::photo::{Rectified, map_box, rectify_photo};
 use crate::textures::crop;
 
 /// A Gothic façade photo with what the user gave for it.
@@ -44,27 +44,11 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
         step: step.to_string(),
         message: e.to_string(),
     };
-    let (w, h) = photo.image.dimensions();
-    let rectification = if photo.rectified {
-        None
-    } else {
-        let params = RectifyParams::default();
-        Some(
-            match photo.lines {
-                Some(lines) => rectify_with_lines(w, h, lines, &params),
-                None => rectify(photo.image, &params),
-            }
-            .map_err(|e| err("rectification (§3.1.1)", e))?,
-        )
-    };
-    let (homography, rectified) = match &rectification {
-        Some(r) => (
-            r.h,
-            r.warp(photo.image)
-                .map_err(|e| err("rectification (§3.1.1)", e))?,
-        ),
-        None => (Matrix3::identity(), photo.image.clone()),
-    };
+    let Rectified {
+        rectification,
+        homography,
+        image: rectified,
+    } = rectify_photo(photo.name, photo.image, photo.lines, photo.rectified)?;
     let (rw, rh) = rectified.dimensions();
     let whole = [0.0, 0.0, f64::from(rw), f64::from(rh)];
     let bbox = match photo.bbox {

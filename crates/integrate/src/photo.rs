@@ -44,6 +44,48 @@ impl FacadeEstimate {
     }
 }
 
+/// A photo after §3.1.1.
+pub struct Rectified {
+    pub rectification: Option<Rectification>,
+    /// Photo pixels → rectified pixels (identity for a photo given rectified).
+    pub homography: Matrix3<f64>,
+    pub image: RgbImage,
+}
+
+/// §3.1.1 on a photo: automatic, from the user's segments, or none when it is already an
+/// elevation.
+pub fn rectify_photo(
+    name: &str,
+    image: &RgbImage,
+    lines: Option<&ManualLines>,
+    already_rectified: bool,
+) -> Result<Rectified, IntegrateError> {
+    let err = |e: facade::FacadeError| IntegrateError::Facade {
+        image: name.to_string(),
+        step: "rectification (§3.1.1)".to_string(),
+        message: e.to_string(),
+    };
+    if already_rectified {
+        return Ok(Rectified {
+            rectification: None,
+            homography: Matrix3::identity(),
+            image: image.clone(),
+        });
+    }
+    let (w, h) = image.dimensions();
+    let params = RectifyParams::default();
+    let r = match lines {
+        Some(lines) => rectify_with_lines(w, h, lines, &params),
+        None => rectify(image, &params),
+    }
+    .map_err(err)?;
+    Ok(Rectified {
+        homography: r.h,
+        image: r.warp(image).map_err(err)?,
+        rectification: Some(r),
+    })
+}
+
 /// Runs §3.1.1–3.1.7 on one photo.
 pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateError> {
     let err = |step: &str, e: facade::FacadeError| IntegrateError::Facade {
@@ -51,27 +93,11 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         step: step.to_string(),
         message: e.to_string(),
     };
-    let (w, h) = photo.image.dimensions();
-    let rectification = if photo.rectified {
-        None
-    } else {
-        let params = RectifyParams::default();
-        Some(
-            match photo.lines {
-                Some(lines) => rectify_with_lines(w, h, lines, &params),
-                None => rectify(photo.image, &params),
-            }
-            .map_err(|e| err("rectification (§3.1.1)", e))?,
-        )
-    };
-    let (homography, rectified) = match &rectification {
-        Some(r) => (
-            r.h,
-            r.warp(photo.image)
-                .map_err(|e| err("rectification (§3.1.1)", e))?,
-        ),
-        None => (Matrix3::identity(), photo.image.clone()),
-    };
+    let Rectified {
+        rectification,
+        homography,
+        image: rectified,
+    } = rectify_photo(photo.name, photo.image, photo.lines, photo.rectified)?;
     let training = map_training(photo.training, &homography);
     let mut params = ClassifyParams::default();
     params.features.seed = photo.seed;

@@ -234,7 +234,10 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
     assert!((f.width - castle.keep_width()).abs() < 0.05 * castle.keep_width());
     assert!((keep.height - f64::from(h) * f.scale).abs() < 1e-9);
     let src = program::generate(&result, &program::Options::default());
-    assert!(src.contains(&format!("import {:?} as {}", g.program, g.alias)), "{src}");
+    assert!(
+        src.contains(&format!("import {:?} as {}", g.program, g.alias)),
+        "{src}"
+    );
     let generated = integrate::gothic_programs(&result, &gothics);
     assert_eq!(generated.len(), 1);
     let model = vsg::run_with(
@@ -251,5 +254,9 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
         .filter(|(k, _)| k.starts_with(&format!("{}.", g.alias)))
         .map(|(_, v)| *v)
         .sum();
-    assert!(arches > g.elements, "the façade's blocks are in the model: {:?}", stats.by_symbol);
+    assert!(
+        arches > g.elements,
+        "the façade's blocks are in the model: {:?}",
+        stats.by_symbol
+    );
 }
