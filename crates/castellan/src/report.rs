@@ -15,7 +15,7 @@ const VIEWER_JS: &str = include_str!(concat!(env!("OUT_DIR"), "/viewer.js"));
 pub const MAX_EMBEDDED_MODEL: usize = 64 << 20;
 
 /// The model viewer: the glb embedded as base64 and the bundled script.
-fn viewer(glb: &[u8]) -> String {
+fn viewer(glb: &[u8], estimate: &Estimate) -> String {
     if glb.len() > MAX_EMBEDDED_MODEL {
         return format!(
             "<p>The model ({} MB) is too large to embed in this page: open <a href=\"model.glb\">model.glb</a> in Blender or another glTF viewer.</p>",
@@ -23,8 +23,11 @@ fn viewer(glb: &[u8]) -> String {
         );
     }
     format!(
-        "<div style=\"display:flex;gap:1em\"><div id=\"viewer\" style=\"flex:1;height:560px;border:1px solid #ccc\"></div><div id=\"outline\" style=\"width:260px;height:560px;overflow:auto;font-size:90%\"></div></div>\n<p>Drag to orbit, scroll to zoom, right-drag to pan; untick a structure or a symbol to peel it away.</p>\n<script type=\"application/octet-stream\" id=\"castellan-model\">{}</script>\n<script>{}</script>\n",
+        "<div style=\"display:flex;gap:1em\"><div id=\"viewer\" style=\"flex:1;height:560px;border:1px solid #ccc\"></div><div id=\"outline\" style=\"width:260px;height:560px;overflow:auto;font-size:90%\"></div></div>\n<p>Drag to orbit, scroll to zoom, right-drag to pan; untick a structure or a symbol to peel it away; click a part to see its parameters, volume and provenance.</p>\n<script type=\"application/octet-stream\" id=\"castellan-model\">{}</script>\n<script type=\"application/json\" id=\"castellan-estimate\">{}</script>\n<script>{}</script>\n",
         base64::engine::general_purpose::STANDARD.encode(glb),
+        serde_json::to_string(estimate)
+            .unwrap_or_default()
+            .replace("</", "<\\/"),
         VIEWER_JS.replace("</script", "<\\/script")
     )
 }
@@ -61,7 +64,7 @@ pub fn html(
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
     }
-    let _ = writeln!(h, "<h2>Model</h2>{}", viewer(glb));
+    let _ = writeln!(h, "<h2>Model</h2>{}", viewer(glb, e));
     let _ = writeln!(
         h,
         "<details><summary>Software-rendered preview</summary><img src=\"preview.png\" alt=\"rendered model\"></details>"

@@ -111,6 +111,32 @@ try {
   });
   figures.model_pixel_fraction = await painted();
   check(figures.model_pixel_fraction > 0.02, `the model covers ${figures.model_pixel_fraction} of the canvas`);
+  // Clicking a part shows its symbol, volume and provenance.
+  const target = await page.$eval('#viewer canvas', (c) => {
+    const probe = document.createElement('canvas');
+    probe.width = c.width; probe.height = c.height;
+    const ctx = probe.getContext('2d');
+    ctx.drawImage(c, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let best = null;
+    for (let y = 0; y < c.height; y += 3) {
+      for (let x = 0; x < c.width; x += 3) {
+        const i = 4 * (y * c.width + x);
+        if (Math.abs(d[i] - 0xee) + Math.abs(d[i + 1] - 0xf1) + Math.abs(d[i + 2] - 0xf5) <= 30) continue;
+        const r = Math.hypot(x - c.width / 2, y - c.height / 2);
+        if (!best || r < best.r) best = { x, y, r };
+      }
+    }
+    const scale = c.clientWidth / c.width;
+    return best && { x: best.x * scale, y: best.y * scale };
+  });
+  check(target !== null, 'a painted pixel to click');
+  const canvasBox = await page.locator('#viewer canvas').boundingBox();
+  await page.mouse.click(canvasBox.x + target.x, canvasBox.y + target.y);
+  await page.waitForSelector('.castellan-part[data-symbol]', { timeout: 10_000 });
+  figures.clicked_part = await page.getAttribute('.castellan-part', 'data-symbol');
+  const partText = await page.textContent('.castellan-part');
+  check(partText.includes('volume') && partText.includes('structure'), `the part panel says ${partText}`);
   await page.locator('#model').screenshot({ path: path.join(shots, 'model.png') });
   // Hiding every structure leaves an empty canvas.
   for (const b of await page.locator('#outline label[data-group=structure] input').all()) await b.uncheck();

@@ -31,9 +31,55 @@ function checkbox(list, group, label, count, onChange) {
   list.append(row);
 }
 
+// The VSG symbol of a node: three.js keeps the glTF name in userData.name.
+function symbolOf(o) {
+  let n = o;
+  while (n && !(n.userData && n.userData.name)) n = n.parent;
+  return (n && n.userData.name) || o.name || 'shape';
+}
+
+function fmt(v) {
+  return typeof v === 'number' ? (Math.round(v * 1000) / 1000).toString() : String(v);
+}
+
+// The clicked part: its symbol, shape, parameters and exact volume (the glTF extras VSG
+// writes), and the provenance of its structure's parameters from estimate.json when known.
+function describe(panel, mesh, structureName, estimate) {
+  const d = mesh.userData || {};
+  const rows = [
+    ['symbol', symbolOf(mesh)],
+    ['structure', structureName],
+    ['shape', d.shapeType || '—'],
+    ['parameters', (d.params || []).map(fmt).join(', ') || '—'],
+    ['volume', d.volume === undefined ? '—' : fmt(d.volume)],
+    ['rule line', d.ruleLine === undefined ? '—' : String(d.ruleLine)],
+  ];
+  const s = estimate && (estimate.structures || []).find((x) => x.id === structureName);
+  if (s) {
+    rows.push(['label', s.label], ['height', fmt(s.height)]);
+    for (const [k, p] of Object.entries(s.provenance || {})) {
+      const err = p.fit_error === undefined ? '' : ` (error ${fmt(p.fit_error)} px)`;
+      rows.push([k, `${p.image}: ${p.step}${err}`]);
+    }
+  }
+  const table = document.createElement('table');
+  for (const [k, v] of rows) {
+    const tr = document.createElement('tr');
+    const th = document.createElement('th');
+    const td = document.createElement('td');
+    th.textContent = k;
+    td.textContent = v;
+    tr.append(th, td);
+    table.append(tr);
+  }
+  panel.replaceChildren(table);
+  panel.dataset.symbol = symbolOf(mesh);
+}
+
 // Shows a model in `container` (emptied first) with its outline in `outline` (optional).
-// `source` is the glb's bytes (ArrayBuffer) or its URL.
-export function showModel(container, outline, source) {
+// `source` is the glb's bytes (ArrayBuffer) or its URL; `estimate` (optional) is estimate.json,
+// fetched beside a URL source when not given.
+export function showModel(container, outline, source, estimate) {
   container.replaceChildren();
   if (outline) outline.replaceChildren();
   container.dataset.ready = 'false';
@@ -90,6 +136,39 @@ export function showModel(container, outline, source) {
       structures.get(s).push(o);
       if (!kinds.has(kind)) kinds.set(kind, []);
       kinds.get(kind).push(o);
+    });
+    // Click (not drag) a part to see what it is and where its numbers came from.
+    const panel = document.createElement('div');
+    panel.className = 'castellan-part';
+    panel.textContent = 'Click a part to see its parameters, volume and provenance.';
+    if (outline) outline.prepend(panel);
+    let info = estimate;
+    if (!info && typeof source === 'string') {
+      fetch(new URL('estimate.json', new URL(source, window.location.href)))
+        .then((r) => (r.ok ? r.json() : null))
+        .then((j) => {
+          info = j;
+        })
+        .catch(() => {});
+    }
+    const ray = new THREE.Raycaster();
+    let down = null;
+    renderer.domElement.addEventListener('pointerdown', (ev) => {
+      down = [ev.clientX, ev.clientY];
+    });
+    renderer.domElement.addEventListener('pointerup', (ev) => {
+      if (!down || Math.hypot(ev.clientX - down[0], ev.clientY - down[1]) > 4) return;
+      const r = renderer.domElement.getBoundingClientRect();
+      const ndc = new THREE.Vector2(
+        ((ev.clientX - r.left) / r.width) * 2 - 1,
+        -((ev.clientY - r.top) / r.height) * 2 + 1,
+      );
+      ray.setFromCamera(ndc, camera);
+      const hit = ray.intersectObject(model, true).find((h) => h.object.isMesh && h.object.visible);
+      if (!hit) return;
+      const top = structureOf(hit.object, root);
+      const name = ((top.userData && top.userData.name) || top.name || '').replace(/Site$/, '');
+      describe(panel, hit.object, name, info);
     });
     const hidden = new Set();
     const apply = () => {
@@ -150,7 +229,9 @@ function start() {
   const data = document.getElementById('castellan-model');
   const container = document.getElementById('viewer');
   if (!data || !container) return;
-  showModel(container, document.getElementById('outline'), decode(data.textContent));
+  const est = document.getElementById('castellan-estimate');
+  const estimate = est ? JSON.parse(est.textContent) : undefined;
+  showModel(container, document.getElementById('outline'), decode(data.textContent), estimate);
 }
 
 if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', start);
