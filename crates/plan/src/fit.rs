@@ -305,11 +305,21 @@ pub fn fit_rectangle(pts: &[[f64; 2]]) -> Option<Fit> {
 /// Circle or rectangle for a face loop, whichever fits better relative to its size; `None`
 /// when neither is within `tolerance` of the size (then the loop's edges carry the fits).
 pub fn fit_face(pts: &[[f64; 2]], tolerance: f64) -> Option<Fit> {
-    let circle = fit_circle(pts).map(|(cx, cy, r, e)| Fit::Circle {
-        center: [cx, cy],
-        radius: r,
-        error: e,
-    });
+    // A closed loop's circle spans the loop: a radius beyond the loop's diagonal is a nearly
+    // straight chain fitted by a huge circle, whose error relative to its radius is tiny
+    // (measured on the Sully plan: r = 25,016 px for a 387 × 500 drawing). Not a circle.
+    let (lo, hi) = pts.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]),
+    );
+    let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let circle = fit_circle(pts)
+        .filter(|&(_, _, r, _)| r <= diagonal)
+        .map(|(cx, cy, r, e)| Fit::Circle {
+            center: [cx, cy],
+            radius: r,
+            error: e,
+        });
     let rect = fit_rectangle(pts);
     let rel = |f: &Fit| match f {
         Fit::Circle { radius, error, .. } => error / radius.max(1.0),
@@ -326,6 +336,24 @@ pub fn fit_face(pts: &[[f64; 2]], tolerance: f64) -> Option<Fit> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_nearly_straight_loop_is_no_circle() {
+        // A thin sliver: two long sides 1 px apart; a huge circle fits it within tolerance.
+        let mut pts: Vec<[f64; 2]> = (0..200).map(|i| [i as f64, 0.0]).collect();
+        pts.extend((0..200).rev().map(|i| [i as f64, 1.0 + (i as f64 / 200.0).powi(2) * 0.01]));
+        if let Some(Fit::Circle { radius, .. }) = fit_face(&pts, 0.06) {
+            panic!("a circle of radius {radius} for a 200 x 1 px loop");
+        }
+        // A real ring still fits.
+        let ring: Vec<[f64; 2]> = (0..64)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 64.0;
+                [50.0 + 20.0 * a.cos(), 50.0 + 20.0 * a.sin()]
+            })
+            .collect();
+        assert!(matches!(fit_face(&ring, 0.06), Some(Fit::Circle { .. })));
+    }
 
     fn circle_pts(cx: f64, cy: f64, r: f64, a0: f64, a1: f64, n: usize) -> Vec<[f64; 2]> {
         (0..n)
