@@ -310,7 +310,12 @@ pub fn fit_face(pts: &[[f64; 2]], tolerance: f64) -> Option<Fit> {
     // (measured on the Sully plan: r = 25,016 px for a 387 × 500 drawing). Not a circle.
     let (lo, hi) = pts.iter().fold(
         ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        },
     );
     let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let circle = fit_circle(pts)
@@ -341,7 +346,11 @@ mod tests {
     fn a_nearly_straight_loop_is_no_circle() {
         // A thin sliver: two long sides 1 px apart; a huge circle fits it within tolerance.
         let mut pts: Vec<[f64; 2]> = (0..200).map(|i| [i as f64, 0.0]).collect();
-        pts.extend((0..200).rev().map(|i| [i as f64, 1.0 + (i as f64 / 200.0).powi(2) * 0.01]));
+        pts.extend(
+            (0..200)
+                .rev()
+                .map(|i| [i as f64, 1.0 + (i as f64 / 200.0).powi(2) * 0.01]),
+        );
         if let Some(Fit::Circle { radius, .. }) = fit_face(&pts, 0.06) {
             panic!("a circle of radius {radius} for a 200 x 1 px loop");
         }

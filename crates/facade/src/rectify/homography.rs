@@ -61,7 +61,9 @@ pub fn rectifying_homography(
             "the vanishing line passes through the image centre (the two line families are not a plane's horizontals and verticals)".into(),
         ));
     }
-    let same_side = corners.iter().all(|&(x, y)| w_at(x, y) * wc.signum() > 1e-12);
+    let same_side = corners
+        .iter()
+        .all(|&(x, y)| w_at(x, y) * wc.signum() > 1e-12);
     let region: Vec<(f64, f64)> = if same_side {
         corners.to_vec()
     } else {
