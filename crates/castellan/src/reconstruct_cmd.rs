@@ -120,16 +120,12 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         .enumerate()
         .map(|(i, f)| -> Result<_> {
             let at = format!("{name}: [[facade]] #{} (image = \"{}\")", i + 1, f.image);
-            let image = read_image(&dir.join(&f.image)).with_context(|| at.clone())?;
+            let (image, lines) = read_photo(&dir, &f.image, f.lines.as_deref(), &at)?;
             let training = match &f.training {
                 TrainingSource::Inline(t) => t.clone(),
                 TrainingSource::File(p) => read_json(&dir.join(p)).with_context(|| at.clone())?,
             };
-            let lines = match &f.lines {
-                Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.clone())?),
-                None => None,
-            };
-            Ok((image.to_rgb8(), training, lines))
+            Ok((image, training, lines))
         })
         .collect::<Result<_>>()?;
     let estimates: Vec<FacadeEstimate> = project
@@ -162,12 +158,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         .enumerate()
         .map(|(i, g)| -> Result<_> {
             let at = format!("{name}: [[gothic]] #{} (image = \"{}\")", i + 1, g.image);
-            let image = read_image(&dir.join(&g.image)).with_context(|| at.clone())?;
-            let lines: Option<facade::rectify::ManualLines> = match &g.lines {
-                Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.clone())?),
-                None => None,
-            };
-            Ok((image.to_rgb8(), lines))
+            read_photo(&dir, &g.image, g.lines.as_deref(), &at)
         })
         .collect::<Result<_>>()?;
     let gothics: Vec<GothicFacadeEstimate> = project
@@ -190,23 +181,10 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     if !gothics.is_empty() {
         stages.push(("gothic".into(), ms(t)));
     }
-    for g in &gothics {
+    // The inputs are in the order of the estimates (an indexed parallel collect keeps it).
+    for (g, (photo, _)) in gothics.iter().zip(&gothic_inputs) {
         let stem = stem(&g.name);
-        if let Some((r, (photo, _))) = g.rectification.as_ref().zip(
-            project
-                .gothics
-                .iter()
-                .position(|e| e.image == g.name)
-                .map(|i| &gothic_inputs[i]),
-        ) {
-            outputs.add(
-                &outdir.join(format!("overlays/{stem}_lines.png")),
-                png(
-                    &facade::rectify::draw_overlay(photo, r),
-                    Path::new("lines overlay"),
-                )?,
-            );
-        }
+        add_lines_overlay(&mut outputs, outdir, &stem, photo, g.rectification.as_ref())?;
         outputs.add(
             &outdir.join(format!("overlays/{stem}_gothic.png")),
             png(
@@ -217,15 +195,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     }
     for (e, (photo, _, _)) in estimates.iter().zip(&inputs) {
         let stem = stem(&e.name);
-        if let Some(r) = &e.rectification {
-            outputs.add(
-                &outdir.join(format!("overlays/{stem}_lines.png")),
-                png(
-                    &facade::rectify::draw_overlay(photo, r),
-                    Path::new("lines overlay"),
-                )?,
-            );
-        }
+        add_lines_overlay(&mut outputs, outdir, &stem, photo, e.rectification.as_ref())?;
         let labels = e.model.labels();
         outputs.add(
             &outdir.join(format!("overlays/{stem}_facade.png")),
@@ -393,6 +363,42 @@ pub fn stem(name: &str) -> String {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| name.to_string())
+}
+
+/// A photo of PROJECT.toml and its optional rectification segments (LINES.json); `at` names
+/// the entry in errors.
+fn read_photo(
+    dir: &Path,
+    image: &str,
+    lines: Option<&str>,
+    at: &str,
+) -> Result<(image::RgbImage, Option<facade::rectify::ManualLines>)> {
+    let photo = read_image(&dir.join(image)).with_context(|| at.to_string())?;
+    let lines = match lines {
+        Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.to_string())?),
+        None => None,
+    };
+    Ok((photo.to_rgb8(), lines))
+}
+
+/// The line families and vanishing points of a rectified photo (§3.1.1).
+fn add_lines_overlay(
+    outputs: &mut Outputs,
+    outdir: &Path,
+    stem: &str,
+    photo: &image::RgbImage,
+    rectification: Option<&facade::rectify::Rectification>,
+) -> Result<()> {
+    if let Some(r) = rectification {
+        outputs.add(
+            &outdir.join(format!("overlays/{stem}_lines.png")),
+            png(
+                &facade::rectify::draw_overlay(photo, r),
+                Path::new("lines overlay"),
+            )?,
+        );
+    }
+    Ok(())
 }
 
 fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {

@@ -39,11 +39,6 @@ pub struct GothicFacadeEstimate {
 
 /// Runs §3.1.1 and §4.1–4.2 on one photo.
 pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
-    let err = |step: &str, e: facade::FacadeError| IntegrateError::Facade {
-        image: photo.name.to_string(),
-        step: step.to_string(),
-        message: e.to_string(),
-    };
     let Rectified {
         rectification,
         homography,
@@ -63,8 +58,8 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
             photo.bbox
         ),
     })?;
-    let estimate =
-        estimate(&facade, &GothicParams::default()).map_err(|e| err("arches (§4.1–4.2)", e))?;
+    let estimate = estimate(&facade, &GothicParams::default())
+        .map_err(|e| IntegrateError::facade(photo.name, "arches (§4.1–4.2)", e))?;
     let masonry = masonry::segment(&facade, &estimate, &MasonryParams::default());
     Ok(GothicFacadeEstimate {
         name: photo.name.to_string(),

@@ -77,6 +77,17 @@ pub enum IntegrateError {
     },
 }
 
+impl IntegrateError {
+    /// A chapter 3 or 4 step that failed on the photo `image`.
+    pub fn facade(image: &str, step: &str, e: facade::FacadeError) -> IntegrateError {
+        IntegrateError::Facade {
+            image: image.to_string(),
+            step: step.to_string(),
+            message: e.to_string(),
+        }
+    }
+}
+
 /// Everything integration needs, already estimated.
 pub struct Inputs<'a> {
     pub plan: &'a ParsedPlan,

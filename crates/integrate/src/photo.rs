@@ -60,11 +60,7 @@ pub fn rectify_photo(
     lines: Option<&ManualLines>,
     already_rectified: bool,
 ) -> Result<Rectified, IntegrateError> {
-    let err = |e: facade::FacadeError| IntegrateError::Facade {
-        image: name.to_string(),
-        step: "rectification (§3.1.1)".to_string(),
-        message: e.to_string(),
-    };
+    let err = |e| IntegrateError::facade(name, "rectification (§3.1.1)", e);
     if already_rectified {
         return Ok(Rectified {
             rectification: None,
@@ -88,11 +84,7 @@ pub fn rectify_photo(
 
 /// Runs §3.1.1–3.1.7 on one photo.
 pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateError> {
-    let err = |step: &str, e: facade::FacadeError| IntegrateError::Facade {
-        image: photo.name.to_string(),
-        step: step.to_string(),
-        message: e.to_string(),
-    };
+    let err = |step, e| IntegrateError::facade(photo.name, step, e);
     let Rectified {
         rectification,
         homography,

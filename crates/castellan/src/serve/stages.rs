@@ -30,6 +30,17 @@ fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiErro
         .map_err(|e| conflict(e.to_string()))
 }
 
+/// A façade photo of the project, decoded.
+fn read_photo(app: &App, f: &FacadeEntry) -> Result<image::RgbImage, ApiError> {
+    let path = app
+        .store
+        .path(&f.image)
+        .map_err(err(StatusCode::CONFLICT))?;
+    Ok(read_image(&path)
+        .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
+        .to_rgb8())
+}
+
 fn write_png<P, C>(app: &App, name: &str, img: &image::ImageBuffer<P, C>) -> Result<(), ApiError>
 where
     P: image::PixelWithColorType,
@@ -74,28 +85,18 @@ pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> R
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let f = find_facade(&p, &name)?;
         let t = Instant::now();
-        let path = app
-            .store
-            .path(&f.image)
-            .map_err(err(StatusCode::CONFLICT))?;
-        let img = read_image(&path)
-            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
-            .to_rgb8();
-        let params = facade::rectify::RectifyParams::default();
-        let failed = |e: facade::FacadeError| {
-            ApiError(
-                StatusCode::UNPROCESSABLE_ENTITY,
-                format!("{name}: rectification (§3.1.1): {e}"),
-            )
+        let img = read_photo(app, f)?;
+        let lines = read_lines(app, f)?;
+        // Rectified even when the photo is marked as an elevation, so the user sees the lines.
+        let rectified = integrate::photo::rectify_photo(&f.image, &img, lines.as_ref(), false)
+            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let warped = rectified.image;
+        let Some(r) = rectified.rectification else {
+            return Err(ApiError(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                format!("{name}: rectification gave no homography"),
+            ));
         };
-        let r = match read_lines(app, f)? {
-            Some(manual) => {
-                facade::rectify::rectify_with_lines(img.width(), img.height(), &manual, &params)
-                    .map_err(failed)?
-            }
-            None => facade::rectify::rectify(&img, &params).map_err(failed)?,
-        };
-        let warped = r.warp(&img).map_err(failed)?;
         let s = stem(&f.image);
         let (overlay, rectified) = (
             format!("out/overlays/{s}_lines.png"),
@@ -157,13 +158,7 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let f = find_facade(&p, &name)?;
         let t = Instant::now();
-        let path = app
-            .store
-            .path(&f.image)
-            .map_err(err(StatusCode::CONFLICT))?;
-        let img = read_image(&path)
-            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
-            .to_rgb8();
+        let img = read_photo(app, f)?;
         let training = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
         let lines = read_lines(app, f)?;
         let e = integrate::photo::estimate_facade(&integrate::photo::FacadePhoto {

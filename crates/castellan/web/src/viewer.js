@@ -97,11 +97,7 @@ export function showModel(container, outline, source, estimate) {
   scene.add(sun);
   const camera = new THREE.PerspectiveCamera(45, width / height, 0.01, 1e7);
   const controls = new OrbitControls(camera, renderer.domElement);
-  let frames = 0;
-  const render = () => {
-    frames++;
-    renderer.render(scene, camera);
-  };
+  const render = () => renderer.render(scene, camera);
   controls.addEventListener('change', render);
 
   const loaded = (gltf) => {
@@ -177,7 +173,7 @@ export function showModel(container, outline, source, estimate) {
       });
       render();
     };
-    const toggle = (meshes, key) => (on) => {
+    const toggle = (meshes) => (on) => {
       for (const m of meshes) {
         if (on) hidden.delete(m);
         else hidden.add(m);

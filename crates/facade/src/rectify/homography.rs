@@ -171,14 +171,12 @@ pub fn warp(img: &RgbImage, h: &Matrix3<f64>, out_w: u32, out_h: u32) -> Result<
         .enumerate()
         .for_each(|(y, row)| {
             for x in 0..out_w as usize {
-                // H (u, v, 1) = (x, y, 1) / c for (u, v, 1) c = H⁻¹ (x, y, 1): the source's w is 1 / c.
-                let c = (hi * Vector3::new(x as f64, y as f64, 1.0))[2];
-                if c * centre_side <= 0.0 {
+                // For q = H⁻¹ (x, y, 1), H (q / q₂) = (x, y, 1) / q₂: the source's w is 1 / q₂.
+                let q = hi * Vector3::new(x as f64, y as f64, 1.0);
+                if q[2] * centre_side <= 0.0 {
                     continue;
                 }
-                let Some((u, v)) = apply(&hi, x as f64, y as f64) else {
-                    continue;
-                };
+                let (u, v) = (q[0] / q[2], q[1] / q[2]);
                 if !(u >= 0.0 && v >= 0.0 && u <= (w - 1) as f64 && v <= (hgt - 1) as f64) {
                     continue;
                 }
