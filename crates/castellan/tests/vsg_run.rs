@@ -129,7 +129,7 @@ fn syntax_error_exits_non_zero_with_line_column_and_writes_nothing() {
 fn missing_program_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     let stderr = failure_message(
-        &mut castellan()
+        castellan()
             .args(["vsg", "run", "nowhere.vsg", "-o"])
             .arg(dir.path().join("m.glb")),
     );
@@ -146,7 +146,7 @@ fn runaway_grammar_stops_at_max_depth() {
     )
     .unwrap();
     let glb = dir.path().join("m.glb");
-    let stderr = failure_message(&mut vsg_run(&src, &glb).args(["--max-depth", "20"]));
+    let stderr = failure_message(vsg_run(&src, &glb).args(["--max-depth", "20"]));
     assert!(
         stderr.contains("loop.vsg:2:1: production went deeper than 20 levels"),
         "{stderr}"
@@ -164,7 +164,7 @@ fn runaway_repeat_stops_at_max_shapes() {
     )
     .unwrap();
     let stderr = failure_message(
-        &mut castellan()
+        castellan()
             .args(["vsg", "run"])
             .arg(&src)
             .arg("-o")

@@ -149,9 +149,13 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
             .collect();
         let target = structure_at(&structures, points[0]).ok_or_else(|| {
             let [x, y] = c.plan_points[0];
-            let label = (x >= 0.0 && y >= 0.0 && x < f64::from(plan.width) && y < f64::from(plan.height))
-                .then(|| plan.label_at(x as u32, y as u32).name())
-                .unwrap_or("outside the drawing");
+            let inside =
+                x >= 0.0 && y >= 0.0 && x < f64::from(plan.width) && y < f64::from(plan.height);
+            let label = if inside {
+                plan.label_at(x as u32, y as u32).name()
+            } else {
+                "outside the drawing"
+            };
             fail(format!(
                 "plan point [{x}, {y}] is not inside any plan shape with a circle or rectangle fit or a wall (label there: {label})"
             ))
