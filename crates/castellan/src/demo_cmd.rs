@@ -1,17 +1,44 @@
-//! `castellan demo [-o OUTDIR]`: writes the bundled example project (examples/demo, compiled
+//! `castellan demo [-o OUTDIR] [--example NAME]`: writes a bundled example project (compiled
 //! into the binary) to OUTDIR/project, reconstructs it into OUTDIR, and prints how close the
-//! estimate came to the castle's known truth.
+//! estimate came to what is known of the building. `coucy` (the default) is a real castle from
+//! two public-domain drawings (examples/coucy); `synthetic` is castellan's own drawn castle
+//! with exact truth (examples/demo).
 
 use std::path::PathBuf;
 
 use anyhow::{Result, anyhow};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use integrate::estimate::{Footprint, Structure};
 
 use crate::output::Outputs;
 
-/// The example project: file name and bytes.
-const PROJECT: [(&str, &[u8]); 7] = [
+/// Files of an example project: name and bytes; TRUTH.json among them.
+type Files = &'static [(&'static str, &'static [u8])];
+
+const COUCY: Files = &[
+    (
+        "PROJECT.toml",
+        include_bytes!("../../../examples/coucy/PROJECT.toml"),
+    ),
+    (
+        "plan.png",
+        include_bytes!("../../../examples/coucy/plan.png"),
+    ),
+    (
+        "tower_elevation.png",
+        include_bytes!("../../../examples/coucy/tower_elevation.png"),
+    ),
+    (
+        "README.md",
+        include_bytes!("../../../examples/coucy/README.md"),
+    ),
+    (
+        "TRUTH.json",
+        include_bytes!("../../../examples/coucy/TRUTH.json"),
+    ),
+];
+
+const SYNTHETIC: Files = &[
     (
         "PROJECT.toml",
         include_bytes!("../../../examples/demo/PROJECT.toml"),
@@ -42,44 +69,138 @@ const PROJECT: [(&str, &[u8]); 7] = [
     ),
 ];
 
+/// The bundled examples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Example {
+    /// Coucy castle: Viollet-le-Duc's plan and corner-tower elevation (public domain).
+    Coucy,
+    /// castellan's synthetic castle: a drawn plan and two photos of the keep, exact truth.
+    Synthetic,
+}
+
+impl Example {
+    fn files(self) -> Files {
+        match self {
+            Example::Coucy => COUCY,
+            Example::Synthetic => SYNTHETIC,
+        }
+    }
+
+    fn folder(self) -> &'static str {
+        match self {
+            Example::Coucy => "examples/coucy",
+            Example::Synthetic => "examples/demo",
+        }
+    }
+}
+
 /// `castellan demo` flags.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
     /// Output folder (the example project goes to OUTDIR/project).
     #[arg(short, long, default_value = "castellan-demo")]
     pub output: PathBuf,
+    /// Which bundled example to reconstruct.
+    #[arg(long, value_enum, default_value_t = Example::Coucy)]
+    pub example: Example,
 }
 
 pub fn run(args: &DemoArgs) -> Result<()> {
     let project_dir = args.output.join("project");
+    let files = args.example.files();
     let mut outputs = Outputs::default();
-    for (name, bytes) in PROJECT {
+    for (name, bytes) in files {
         outputs.add(&project_dir.join(name), bytes.to_vec());
     }
     outputs.commit()?;
     let summary =
         crate::reconstruct_cmd::reconstruct(&project_dir.join("PROJECT.toml"), &args.output, None)?;
-    let truth: serde_json::Value = serde_json::from_slice(PROJECT[6].1)?;
-    for line in compare(&summary.estimate.structures, &truth)? {
+    let truth_bytes = files
+        .iter()
+        .find(|(n, _)| *n == "TRUTH.json")
+        .map(|(_, b)| *b)
+        .ok_or_else(|| anyhow!("the example has no TRUTH.json"))?;
+    let truth: serde_json::Value = serde_json::from_slice(truth_bytes)?;
+    eprintln!("estimate vs truth ({}/TRUTH.json):", args.example.folder());
+    let lines = match args.example {
+        Example::Coucy => compare_coucy(&summary.estimate.structures, &truth)?,
+        Example::Synthetic => compare(&summary.estimate.structures, &truth)?,
+    };
+    for line in lines {
         eprintln!("{line}");
     }
     crate::reconstruct_cmd::print_summary(&summary);
     Ok(())
 }
 
+fn num(v: &serde_json::Value) -> Result<f64> {
+    v.as_f64()
+        .ok_or_else(|| anyhow!("TRUTH.json: {v} is not a number"))
+}
+
+fn pct(e: f64, t: f64) -> f64 {
+    100.0 * (e - t) / t
+}
+
+fn circle(s: &Structure) -> Option<([f64; 2], f64)> {
+    match s.footprint {
+        Footprint::Circle { center, radius } => Some((center, radius)),
+        Footprint::Rectangle { .. } => None,
+    }
+}
+
+/// Coucy: the mapped corner tower's height and diameter, the donjon's diameter (the largest
+/// round structure) and the round structures found, against published figures.
+fn compare_coucy(structures: &[Structure], truth: &serde_json::Value) -> Result<Vec<String>> {
+    let mut lines = Vec::new();
+    let tower = structures
+        .iter()
+        .find(|s| !s.facades.is_empty())
+        .ok_or_else(|| anyhow!("no structure received the elevation"))?;
+    let (lo, hi) = (
+        num(&truth["corner_tower_height_m"][0])?,
+        num(&truth["corner_tower_height_m"][1])?,
+    );
+    lines.push(format!(
+        "  corner tower height   {:7.2} m   published {lo:.0}–{hi:.0} m   (from the elevation's scale bar)",
+        tower.height
+    ));
+    if let Some((_, r)) = circle(tower) {
+        let t = num(&truth["corner_tower_diameter_m"])?;
+        lines.push(format!(
+            "  corner tower diameter {:7.2} m   published {t:6.2} m   ({:+.1} %, from the plan's scale bar)",
+            2.0 * r,
+            pct(2.0 * r, t)
+        ));
+    }
+    let round: Vec<f64> = structures
+        .iter()
+        .filter_map(circle)
+        .map(|(_, r)| r)
+        .collect();
+    if let Some(d) = round.iter().copied().reduce(f64::max).map(|r| 2.0 * r) {
+        let t = num(&truth["donjon_diameter_m"])?;
+        lines.push(format!(
+            "  donjon diameter       {d:7.2} m   published {t:6.2} m   ({:+.1} %, the largest round structure)",
+            pct(d, t)
+        ));
+    }
+    lines.push(format!(
+        "  round structures      {:7}     drawn {:6}",
+        round.len(),
+        truth["round_towers_on_plan"]
+    ));
+    Ok(lines)
+}
+
 /// Estimate vs truth, one line per figure.
 fn compare(structures: &[Structure], truth: &serde_json::Value) -> Result<Vec<String>> {
-    let num = |v: &serde_json::Value| {
-        v.as_f64()
-            .ok_or_else(|| anyhow!("TRUTH.json: not a number"))
-    };
-    let mut lines = vec!["estimate vs truth (examples/demo/TRUTH.json):".to_string()];
+    let mut lines = Vec::new();
     let keep = structures
         .iter()
         .find(|s| !s.facades.is_empty())
         .ok_or_else(|| anyhow!("no structure received a façade"))?;
     let k = &truth["keep"];
-    let pct = |e: f64, t: f64| 100.0 * (e - t) / t;
     let (h, th) = (keep.height, num(&k["height_m"])?);
     lines.push(format!(
         "  keep height        {h:7.2} m   truth {th:6.2} m   ({:+.1} %)",
@@ -165,15 +286,32 @@ mod tests {
     }
 
     #[test]
-    fn the_bundled_project_parses() {
-        let text = std::str::from_utf8(PROJECT[0].1).unwrap();
-        let p = integrate::project::Project::from_toml(text).unwrap();
-        for f in &p.facades {
-            assert!(
-                PROJECT.iter().any(|(n, _)| *n == f.image),
-                "{} is bundled",
-                f.image
-            );
+    fn demo_example_defaults_to_coucy() {
+        assert_eq!(
+            Cli::try_parse_from(["x"]).unwrap().args.example,
+            Example::Coucy
+        );
+        assert_eq!(
+            Cli::try_parse_from(["x", "--example", "synthetic"])
+                .unwrap()
+                .args
+                .example,
+            Example::Synthetic
+        );
+        assert!(Cli::try_parse_from(["x", "--example", "atlantis"]).is_err());
+    }
+
+    #[test]
+    fn the_bundled_projects_parse_and_bundle_their_files() {
+        for example in [Example::Coucy, Example::Synthetic] {
+            let files = example.files();
+            let text = std::str::from_utf8(files[0].1).unwrap();
+            let p = integrate::project::Project::from_toml(text).unwrap();
+            let bundled = |name: &str| files.iter().any(|(n, _)| *n == name);
+            assert!(bundled(&p.plan) && bundled("TRUTH.json"), "{example:?}");
+            for f in &p.facades {
+                assert!(bundled(&f.image), "{} is bundled", f.image);
+            }
         }
     }
 }

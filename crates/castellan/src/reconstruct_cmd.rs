@@ -139,6 +139,8 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
                 training,
                 lines: lines.as_ref(),
                 rectified: f.rectified,
+                bbox: f.bbox,
+                scale: f.scale,
                 seed,
             })
             .map_err(|e| anyhow!("{name}: [[facade]] image = \"{}\": {e}", f.image));

@@ -26,13 +26,52 @@ fn project_with(edit: impl Fn(String) -> String) -> tempfile::TempDir {
     dir
 }
 
+/// Issue 11: the default demo is the real Coucy pair; the tower's height comes from the
+/// elevation's scale, within the published 35–40 m give or take the drawing's precision.
+#[test]
+fn demo_reconstructs_coucy_from_its_real_drawings() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("coucy");
+    let assert = castellan()
+        .arg("demo")
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains("examples/coucy/TRUTH.json"), "{stderr}");
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("estimate.json")).unwrap()).unwrap();
+    let structures = estimate["structures"].as_array().unwrap();
+    let mapped: Vec<&serde_json::Value> = structures
+        .iter()
+        .filter(|s| !s["facades"].as_array().unwrap().is_empty())
+        .collect();
+    assert_eq!(mapped.len(), 1, "one structure carries the elevation");
+    let height = mapped[0]["height"].as_f64().unwrap();
+    assert!((32.0..=42.0).contains(&height), "tower height {height} m");
+    assert_eq!(mapped[0]["footprint"]["type"], "circle");
+    let round = structures
+        .iter()
+        .filter(|s| s["footprint"]["type"] == "circle")
+        .count();
+    assert!(round >= 2, "{round} round structures");
+    for f in [
+        "model.glb",
+        "index.html",
+        "preview.png",
+        "project/README.md",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+}
+
 #[test]
 fn demo_writes_the_report_the_model_and_the_estimate() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("demo");
     let assert = castellan()
-        .arg("demo")
-        .arg("-o")
+        .args(["demo", "--example", "synthetic", "-o"])
         .arg(&out)
         .assert()
         .success();

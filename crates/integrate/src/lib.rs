@@ -218,11 +218,24 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
                 Placement::Arc { diameter, .. } => diameter,
             })
             .collect();
+        let measured = |m: &Mapping| {
+            inputs.facades[m.photo]
+                .metres_per_pixel
+                .map(|mpp| mpp * frame.units_per_metre)
+        };
         let scales: Vec<f64> = params
             .iter()
             .zip(&widths)
-            .map(|(p, w_p)| w_p / (p.x_fr - p.x_fl).max(1.0))
+            .zip(maps)
+            .map(|((p, w_p), m)| measured(m).unwrap_or(w_p / (p.x_fr - p.x_fl).max(1.0)))
             .collect();
+        let how = |m: &Mapping| {
+            if measured(m).is_some() {
+                "the elevation's own scale (metres per pixel, from its scale bar)"
+            } else {
+                "w_p / w_f"
+            }
+        };
         let heights: Vec<f64> = params
             .iter()
             .zip(&scales)
@@ -241,11 +254,15 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
                 &names.join(", "),
                 if joint {
                     format!(
-                        "§6.1.2 mean of {} façade heights, each scaled by w_p / w_f",
-                        maps.len()
+                        "§6.1.2 mean of {} façade heights, each scaled by {}",
+                        maps.len(),
+                        how(&maps[0])
                     )
                 } else {
-                    "§6.1.2 façade boundary height (§3.1.5) scaled by w_p / w_f".to_string()
+                    format!(
+                        "§6.1.2 façade boundary height (§3.1.5) scaled by {}",
+                        how(&maps[0])
+                    )
                 },
                 None,
             ),
@@ -291,9 +308,10 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
                 Provenance::new(
                     &est.name,
                     format!(
-                        "§3.1.7 façade {} of the rectified photo{}, scaled by s = {s:.4} (w_p / w_f, §6.1.2)",
+                        "§3.1.7 façade {} of the rectified photo{}, scaled by s = {s:.4} ({}, §6.1.2)",
                         m.facade,
-                        if joint { ", floors re-estimated jointly (§6.1.2)" } else { "" }
+                        if joint { ", floors re-estimated jointly (§6.1.2)" } else { "" },
+                        how(m)
                     ),
                     None,
                 ),

@@ -22,6 +22,10 @@ pub struct FacadePhoto<'a> {
     pub lines: Option<&'a ManualLines>,
     /// The photo is already rectified.
     pub rectified: bool,
+    /// The user's outline of the façade in the photo's pixels (replaces §3.1.5).
+    pub bbox: Option<[f64; 4]>,
+    /// Metres per pixel when the photo is a measured elevation (rectified photos only).
+    pub scale: Option<f64>,
     pub seed: u64,
 }
 
@@ -35,6 +39,8 @@ pub struct FacadeEstimate {
     pub training: Training,
     pub log_likelihoods: LogLikelihoods,
     pub model: FacadeModel,
+    /// Metres per rectified pixel, when the user measured it on the drawing.
+    pub metres_per_pixel: Option<f64>,
 }
 
 impl FacadeEstimate {
@@ -90,7 +96,35 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         homography,
         image: rectified,
     } = rectify_photo(photo.name, photo.image, photo.lines, photo.rectified)?;
-    let training = map_training(photo.training, &homography);
+    let mut training = map_training(photo.training, &homography);
+    let (homography, rectified) = match photo.bbox {
+        None => (homography, rectified),
+        Some(b) => {
+            // Departure from §3.1.5: the user's outline is the façade. The cut-out becomes the
+            // rectified image (photo → cut-out = translation ∘ H), so everything downstream
+            // (points, textures, overlays) stays in one frame; without a background class the
+            // search takes the whole cut-out as one façade.
+            let outline_error = |why: String| IntegrateError::Facade {
+                image: photo.name.to_string(),
+                step: "façade outline (bbox)".into(),
+                message: why,
+            };
+            let r = map_box(&b, &homography)
+                .map(|[x0, y0, x1, y1]| [x0.floor(), y0.floor(), x1.ceil(), y1.ceil()])
+                .ok_or_else(|| {
+                    outline_error(format!("bbox {b:?} does not map into the rectified photo"))
+                })?;
+            let cut = crate::textures::crop(&rectified, r).ok_or_else(|| {
+                outline_error(format!(
+                    "bbox {b:?} has no pixels inside the rectified photo"
+                ))
+            })?;
+            let (x0, y0) = (r[0].max(0.0).round(), r[1].max(0.0).round());
+            let shift = Matrix3::new(1.0, 0.0, -x0, 0.0, 1.0, -y0, 0.0, 0.0, 1.0);
+            training = inside(&training, [x0, y0], cut.dimensions());
+            (shift * homography, cut)
+        }
+    };
     let mut params = ClassifyParams::default();
     params.features.seed = photo.seed;
     let log_likelihoods = classify(&rectified, &training, &params)
@@ -105,7 +139,36 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         training,
         log_likelihoods,
         model,
+        metres_per_pixel: photo.scale,
     })
+}
+
+/// The window and wall boxes moved into a cut-out at `origin` of size `size`, clipped to it;
+/// boxes left with no area are dropped, and so is the background class (the cut-out is the
+/// façade).
+fn inside(t: &Training, origin: [f64; 2], size: (u32, u32)) -> Training {
+    let (w, h) = (f64::from(size.0), f64::from(size.1));
+    let classes = t
+        .classes
+        .iter()
+        .filter(|(name, _)| name.as_str() != "background")
+        .map(|(name, boxes)| {
+            let moved = boxes
+                .iter()
+                .map(|b| {
+                    [
+                        (b[0] - origin[0]).clamp(0.0, w),
+                        (b[1] - origin[1]).clamp(0.0, h),
+                        (b[2] - origin[0]).clamp(0.0, w),
+                        (b[3] - origin[1]).clamp(0.0, h),
+                    ]
+                })
+                .filter(|b| b[2] > b[0] && b[3] > b[1])
+                .collect();
+            (name.clone(), moved)
+        })
+        .collect();
+    Training { classes }
 }
 
 /// Each box mapped through `h` and shrunk to the axis-aligned box inside the mapped

@@ -45,6 +45,19 @@ pub struct FacadeEntry {
     /// The photo is already a rectified elevation: skip §3.1.1.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub rectified: bool,
+    /// The façade's outline [x0, y0, x1, y1] in the photo's pixels, drawn by the user: the
+    /// façade search then stays inside it and skips §3.1.5's boundary search (which splits an
+    /// engraved elevation's shading into strips; docs/gallery.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bbox: Option<[f64; 4]>,
+    /// Metres per pixel of a measured elevation (from its scale bar): the façade is then scaled
+    /// by it instead of by the plan width it is mapped to (§6.1.2's s = w_p / w_f).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+}
+
+fn is_box(b: &[f64; 4]) -> bool {
+    b.iter().all(|v| v.is_finite()) && b[2] > b[0] && b[3] > b[1]
 }
 
 /// A Gothic façade photo (ch. 4): no training boxes; the façade is the part of the
@@ -155,9 +168,7 @@ impl Project {
                     g.image
                 ));
             }
-            if let Some(b) = g.bbox
-                && !(b.iter().all(|v| v.is_finite()) && b[2] > b[0] && b[3] > b[1])
-            {
+            if g.bbox.is_some_and(|b| !is_box(&b)) {
                 return bad(format!(
                     "[[gothic]] #{} (image = \"{}\"): bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
                     i + 1,
@@ -166,6 +177,20 @@ impl Project {
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
+            if f.scale.is_some_and(|m| !(m.is_finite() && m > 0.0)) {
+                return bad(format!(
+                    "[[facade]] #{} (image = \"{}\"): scale must be a positive number of metres per pixel",
+                    i + 1,
+                    f.image
+                ));
+            }
+            if f.bbox.is_some_and(|b| !is_box(&b)) {
+                return bad(format!(
+                    "[[facade]] #{} (image = \"{}\"): bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
+                    i + 1,
+                    f.image
+                ));
+            }
             if self.facades[..i].iter().any(|g| g.image == f.image) {
                 return bad(format!(
                     "[[facade]] #{} (image = \"{}\"): this image is listed twice",
@@ -296,5 +321,24 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("scale"), "{e}");
+    }
+
+    /// Issue 11: a measured elevation's outline and scale are checked like the plan's.
+    #[test]
+    fn facade_outline_and_scale_are_checked() {
+        let with =
+            |extra: &str| GOOD.replace("rectified = true", &format!("rectified = true\n{extra}"));
+        let p = Project::from_toml(&with("bbox = [1, 2, 30, 40]\nscale = 0.126")).unwrap();
+        assert_eq!(p.facades[1].bbox, Some([1.0, 2.0, 30.0, 40.0]));
+        assert_eq!(p.facades[1].scale, Some(0.126));
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p, "round trip");
+        let e = Project::from_toml(&with("bbox = [30, 2, 1, 40]"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("[[facade]] #2") && e.contains("bbox"), "{e}");
+        let e = Project::from_toml(&with("scale = 0"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("[[facade]] #2") && e.contains("scale"), "{e}");
     }
 }

@@ -35,6 +35,8 @@ fn keep_and_towers_match_facades_and_plan() {
                 training: &p.training,
                 lines: None,
                 rectified: false,
+                bbox: None,
+                scale: None,
                 seed: 7,
             })
             .unwrap()
@@ -131,6 +133,8 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         training: &photo.training,
         lines: None,
         rectified: true,
+        bbox: None,
+        scale: None,
         seed: 7,
     })
     .unwrap();

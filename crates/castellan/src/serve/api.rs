@@ -202,6 +202,8 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
                         training: TrainingSource::File(training),
                         lines: None,
                         rectified: false,
+                        bbox: None,
+                        scale: None,
                     });
                 }
             }

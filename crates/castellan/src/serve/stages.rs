@@ -167,6 +167,8 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
             training: &training,
             lines: lines.as_ref(),
             rectified: f.rectified,
+            bbox: f.bbox,
+            scale: f.scale,
             seed: p.seed.unwrap_or(0),
         })
         .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;

@@ -247,6 +247,8 @@ mod tests {
             training: TrainingSource::File("f.training.json".into()),
             lines: None,
             rectified: false,
+            bbox: None,
+            scale: None,
         });
         store.commit(Some(&p), vec![]).unwrap();
         assert_eq!(store.load().unwrap().unwrap().facades.len(), 1);
