@@ -153,50 +153,37 @@ impl Project {
         }
         let mut images: Vec<&str> = self.facades.iter().map(|f| f.image.as_str()).collect();
         images.extend(self.gothics.iter().map(|g| g.image.as_str()));
+        let entry = |kind: &str, i: usize, image: &str, problem: &str| {
+            bad(format!(
+                "[[{kind}]] #{} (image = \"{image}\"): {problem}",
+                i + 1
+            ))
+        };
+        let mapped = |image: &str| self.correspondences.iter().any(|c| c.facade == image);
+        const TWICE: &str = "this image is listed twice";
+        const UNMAPPED: &str = "no [[correspondence]] maps this façade to a plan shape";
+        const NOT_A_BOX: &str = "bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0";
         for (i, g) in self.gothics.iter().enumerate() {
             if images.iter().filter(|n| **n == g.image).count() > 1 {
-                return bad(format!(
-                    "[[gothic]] #{} (image = \"{}\"): this image is listed twice",
-                    i + 1,
-                    g.image
-                ));
+                return entry("gothic", i, &g.image, TWICE);
             }
-            if !self.correspondences.iter().any(|c| c.facade == g.image) {
-                return bad(format!(
-                    "[[gothic]] #{} (image = \"{}\"): no [[correspondence]] maps this façade to a plan shape",
-                    i + 1,
-                    g.image
-                ));
+            if !mapped(&g.image) {
+                return entry("gothic", i, &g.image, UNMAPPED);
             }
             if g.bbox.is_some_and(|b| !is_box(&b)) {
-                return bad(format!(
-                    "[[gothic]] #{} (image = \"{}\"): bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
-                    i + 1,
-                    g.image
-                ));
+                return entry("gothic", i, &g.image, NOT_A_BOX);
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
             if f.scale.is_some_and(|m| !(m.is_finite() && m > 0.0)) {
-                return bad(format!(
-                    "[[facade]] #{} (image = \"{}\"): scale must be a positive number of metres per pixel",
-                    i + 1,
-                    f.image
-                ));
+                let problem = "scale must be a positive number of metres per pixel";
+                return entry("facade", i, &f.image, problem);
             }
             if f.bbox.is_some_and(|b| !is_box(&b)) {
-                return bad(format!(
-                    "[[facade]] #{} (image = \"{}\"): bbox must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
-                    i + 1,
-                    f.image
-                ));
+                return entry("facade", i, &f.image, NOT_A_BOX);
             }
             if self.facades[..i].iter().any(|g| g.image == f.image) {
-                return bad(format!(
-                    "[[facade]] #{} (image = \"{}\"): this image is listed twice",
-                    i + 1,
-                    f.image
-                ));
+                return entry("facade", i, &f.image, TWICE);
             }
         }
         for (i, c) in self.correspondences.iter().enumerate() {
@@ -218,12 +205,8 @@ impl Project {
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
-            if !self.correspondences.iter().any(|c| c.facade == f.image) {
-                return bad(format!(
-                    "[[facade]] #{} (image = \"{}\"): no [[correspondence]] maps this façade to a plan shape",
-                    i + 1,
-                    f.image
-                ));
+            if !mapped(&f.image) {
+                return entry("facade", i, &f.image, UNMAPPED);
             }
         }
         for (i, t) in self.textures.iter().enumerate() {
