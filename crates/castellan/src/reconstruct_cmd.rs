@@ -99,6 +99,18 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let parsed = plan::parse(&plan_image, &plan::Options::default())
         .map_err(|e| anyhow!("{name}: plan = \"{}\": {e}", project.plan))?;
     stages.push(("plan".into(), ms(t)));
+    let plan_scale = match project.scale_bar {
+        None => project.scale,
+        Some(metres) => {
+            let found = parsed.scale_bar.ok_or_else(|| {
+                anyhow!(
+                    "{name}: scale_bar = {metres}: no drawn scale bar found in plan = \"{}\" (a straight horizontal ruled line); give scale = METRES_PER_PIXEL instead",
+                    project.plan
+                )
+            })?;
+            Some(found.scale(metres))
+        }
+    };
     outputs.add(
         &outdir.join("overlays/plan_labels.png"),
         png(
@@ -219,7 +231,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let mut estimate = integrate::integrate(&integrate::Inputs {
         plan: &parsed,
         plan_image: &project.plan,
-        scale: project.scale,
+        scale: plan_scale,
         facades: &estimates,
         gothics: &gothics,
         correspondences: &project.correspondences,

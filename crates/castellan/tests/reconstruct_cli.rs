@@ -199,3 +199,39 @@ fn a_facade_without_a_correspondence_is_named() {
 fn a_syntax_error_has_line_and_column() {
     fails_naming(|t| t.replacen("seed = 7", "seed = ", 1), "PROJECT.toml:6:");
 }
+
+/// Issue 11: `scale_bar` in PROJECT.toml — the bar drawn on the plan gives the scale. A
+/// 150-px bar under the demo castle said to be 15 m long gives its 0.1 m per pixel.
+#[test]
+fn scale_bar_in_the_project_finds_the_drawn_bar() {
+    let project = project_with(|t| t.replace("scale = 0.1", "scale_bar = 15"));
+    let plan_path = project.path().join("plan.png");
+    let mut plan = image::open(&plan_path).unwrap().to_rgb8();
+    for y in 440..443 {
+        for x in 40..190 {
+            plan.put_pixel(x, y, image::Rgb([0, 0, 0]));
+        }
+    }
+    plan.save(&plan_path).unwrap();
+    let out = project.path().join("out");
+    castellan()
+        .arg("reconstruct")
+        .arg(project.path().join("PROJECT.toml"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("estimate.json")).unwrap()).unwrap();
+    assert_eq!(estimate["units"], "m");
+    let scale = estimate["scale"].as_f64().unwrap();
+    assert!((scale - 0.1).abs() < 0.002, "metres per pixel {scale}");
+}
+
+#[test]
+fn scale_bar_without_a_drawn_bar_is_refused() {
+    fails_naming(
+        |t| t.replace("scale = 0.1", "scale_bar = 15"),
+        "no drawn scale bar found",
+    );
+}

@@ -14,6 +14,10 @@ pub struct Project {
     /// Metres per plan pixel; the model comes out in metres when given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<f64>,
+    /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
+    /// (`plan::scalebar`) and the scale follows from its length in pixels. Instead of `scale`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale_bar: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
@@ -150,6 +154,16 @@ impl Project {
             return bad(format!(
                 "scale = {s}: metres per plan pixel must be a positive number"
             ));
+        }
+        if let Some(m) = self.scale_bar {
+            if !(m.is_finite() && m > 0.0) {
+                return bad(format!(
+                    "scale_bar = {m}: the bar's length in metres must be a positive number"
+                ));
+            }
+            if self.scale.is_some() {
+                return bad("give either scale (metres per pixel) or scale_bar (the drawn bar's length in metres), not both".into());
+            }
         }
         let mut images: Vec<&str> = self.facades.iter().map(|f| f.image.as_str()).collect();
         images.extend(self.gothics.iter().map(|g| g.image.as_str()));
@@ -304,6 +318,15 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("scale"), "{e}");
+        let both = GOOD.replace("scale = 0.05", "scale = 0.05\nscale_bar = 50");
+        let e = Project::from_toml(&both).unwrap_err().to_string();
+        assert!(e.contains("not both"), "{e}");
+        let bar = GOOD.replace("scale = 0.05", "scale_bar = 50");
+        assert_eq!(Project::from_toml(&bar).unwrap().scale_bar, Some(50.0));
+        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale_bar = -2"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("scale_bar"), "{e}");
     }
 
     /// Issue 11: a measured elevation's outline and scale are checked like the plan's.

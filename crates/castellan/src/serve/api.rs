@@ -178,6 +178,7 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
                 project = Some(Project {
                     plan: name.clone(),
                     scale: None,
+                    scale_bar: None,
                     seed: None,
                     facades: vec![],
                     gothics: vec![],
