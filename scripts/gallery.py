@@ -75,15 +75,18 @@ ELEVATIONS = [
     {
         "file": "elevations/vld5_arques-donjon_elevation_046.png",
         "bbox": [80, 215, 330, 505],
-        "scale": 0.0877,
+        "scale": 0.0957,
         "training": {
             "window": [[132, 336, 149, 360], [217, 338, 231, 361], [133, 401, 147, 419]],
             "wall": [[80, 290, 110, 320], [250, 430, 280, 460], [160, 250, 200, 275]],
             "background": [[20, 60, 60, 120], [335, 60, 365, 110], [20, 520, 110, 545]],
         },
-        "no_model": "the plan parser sees the keep's thick walls as a castle's outer wall and "
-        "its grey-washed rooms as several faces (plan vld5_arques-donjon_plan_040 below): "
-        "no single plan shape is the keep",
+        "model": {
+            "plan": "plans/vld5_arques-donjon_plan_040.png",
+            "plan_scale": 0.0913,
+            "facade_point": [205, 400],
+            "plan_point": [280, 398],
+        },
     },
     {
         "file": "elevations/vld5_chambois-donjon_elevation_052.png",
@@ -110,8 +113,12 @@ ELEVATIONS = [
             "wall": [[60, 470, 100, 510], [270, 460, 300, 500], [180, 470, 220, 510]],
             "background": [[5, 30, 40, 120], [320, 30, 360, 120]],
         },
-        "no_model": "the donjon (bottom of plan vld7_poitiers-palais_plan_013) is parsed as a "
-        "ring of outer-wall pieces round tower rooms, with no shape for the donjon as a whole",
+        "model": {
+            "plan": "plans/vld7_poitiers-palais_plan_013.png",
+            "plan_scale": None,
+            "facade_point": [180, 400],
+            "plan_point": [140, 440],
+        },
     },
     {
         "file": "elevations/vld9_vincennes-tour-angle_elevation_111.png",
@@ -158,8 +165,12 @@ ELEVATIONS = [
             "wall": [[100, 280, 140, 320], [105, 400, 130, 440], [50, 420, 75, 450]],
             "background": [[180, 250, 200, 380], [5, 60, 40, 200]],
         },
-        "no_model": "the round keep's plan (vld5_rouen-donjon_plan_074) is a ring whose room "
-        "is split by drawn vault ribs into wedges: no round room is found",
+        "model": {
+            "plan": "plans/vld5_rouen-donjon_plan_074.png",
+            "plan_scale": None,
+            "facade_point": [95, 400],
+            "plan_point": [395, 35],
+        },
     },
     {
         "file": "elevations/vld7_carcassonne-porte-narbonnaise_elevation_345.png",
