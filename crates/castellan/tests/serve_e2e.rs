@@ -1,6 +1,7 @@
 //! End-to-end: `castellan serve` on the demo project driven by Debian's Chromium through
-//! playwright-core (tests/e2e/serve.e2e.mjs): overlays appear, the model is drawn with the
-//! expected structures in the outline. Outside CI it skips, saying why, when Chromium, Node.js
+//! playwright-core (tests/e2e/serve.e2e.mjs): overlays appear, the plan is cleaned with the brush
+//! and the rectification segments dragged, the model is drawn with the expected structures in
+//! the outline and its walls peeled away. Outside CI it skips, saying why, when Chromium, Node.js
 //! or tests/e2e/node_modules (`npm ci` there) is missing; under CI=true those are failures.
 //! Screenshots go to $CASTELLAN_E2E_SCREENSHOTS (docs/serve for the docs) or a temporary folder.
 
@@ -69,9 +70,13 @@ fn the_demo_workflow_runs_in_chromium() {
     assert!(figures["model_pixel_fraction"].as_f64().unwrap() > 0.02);
     for shot in [
         "plan.png",
+        "plan-cleaning.png",
         "facades.png",
+        "lines.png",
         "correspondences.png",
         "model.png",
+        "model-peeled.png",
+        "model-cut.png",
     ] {
         let img = image::open(shots.join(shot)).unwrap();
         assert!(img.width() > 100 && img.height() > 100, "{shot}");
@@ -88,4 +93,14 @@ fn the_demo_workflow_runs_in_chromium() {
         dir.join("out/overlays/keep_south_near_facade.png")
             .is_file()
     );
+    // The page cleaned the plan and undid it, saved segments and went back to automatic ones:
+    // the files stay, PROJECT.toml names the originals.
+    let project = std::fs::read_to_string(dir.join("PROJECT.toml")).unwrap();
+    assert!(project.contains("plan = \"plan.png\""), "{project}");
+    assert!(!project.contains("lines ="), "{project}");
+    assert!(dir.join("plan.cleaned.png").is_file());
+    let lines: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("keep_south_near.lines.json")).unwrap())
+            .unwrap();
+    assert!(lines["horizontal"].as_array().unwrap().len() >= 2);
 }

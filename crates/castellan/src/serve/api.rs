@@ -2,6 +2,7 @@
 //! errors as JSON, the blocking runner holding the project's lock, the project, progress,
 //! uploads (checked by decoding) and files confined to the project. The stages are in stages.rs.
 
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
@@ -21,6 +22,8 @@ pub struct App {
     pub store: Store,
     pub max_upload: usize,
     progress: Mutex<Progress>,
+    /// How long each step took last time, so the page can show how far along a step is.
+    durations: Mutex<HashMap<String, u128>>,
 }
 
 /// What the page polls while a long step runs.
@@ -31,6 +34,8 @@ struct Progress {
     #[serde(skip)]
     started: Option<Instant>,
     elapsed_ms: u128,
+    /// The running step's duration last time it succeeded, if it ran before.
+    expected_ms: Option<u128>,
     /// The last step that ended, with its outcome.
     last: Option<Value>,
 }
@@ -41,6 +46,7 @@ impl App {
             store,
             max_upload,
             progress: Mutex::new(Progress::default()),
+            durations: Mutex::new(HashMap::new()),
         })
     }
 }
@@ -72,14 +78,20 @@ where
         let _guard = app.store.lock();
         let set = |p: Progress| *app.progress.lock().unwrap_or_else(PoisonError::into_inner) = p;
         let t = Instant::now();
+        let durations = || app.durations.lock().unwrap_or_else(PoisonError::into_inner);
         set(Progress {
             running: Some(step.clone()),
             started: Some(t),
+            expected_ms: durations().get(&step).copied(),
             ..Default::default()
         });
         let result = work(&app);
+        let ms = t.elapsed().as_millis();
         let outcome = match &result {
-            Ok(_) => json!({ "step": step, "ok": true, "ms": t.elapsed().as_millis() }),
+            Ok(_) => {
+                durations().insert(step.clone(), ms);
+                json!({ "step": step, "ok": true, "ms": ms })
+            }
             Err(ApiError(_, m)) => json!({ "step": step, "ok": false, "error": m }),
         };
         set(Progress {
@@ -109,6 +121,10 @@ pub(super) fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEn
 pub async fn project(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "project", |app| {
         let p = app.store.load().map_err(err(StatusCode::CONFLICT))?;
+        let cleaning = match &p {
+            Some(p) => Some(super::clean::load(app, p)?),
+            None => None,
+        };
         let mut training = serde_json::Map::new();
         for f in p.iter().flat_map(|p| &p.facades) {
             let t = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
@@ -124,6 +140,7 @@ pub async fn project(State(app): State<Arc<App>>) -> Reply {
             "dir": app.store.dir.display().to_string(),
             "project": p,
             "training": training,
+            "cleaning": cleaning,
             "outputs": model,
         })))
     })
@@ -172,6 +189,10 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
         let name = upload_name(&client_name, format);
         let mut project = app.store.load().map_err(err(StatusCode::CONFLICT))?;
         let mut files = vec![(name.clone(), bytes.to_vec())];
+        if kind == "plan" {
+            // A new drawing starts a new cleaning (the old one's strokes belong to the old drawing).
+            files.push(super::clean::fresh(&name));
+        }
         match (kind.as_str(), project.as_mut()) {
             ("plan", Some(p)) => p.plan = name.clone(),
             ("plan", None) => {

@@ -1,8 +1,13 @@
 //! `castellan serve [PROJECT_DIR]` (issue 10): the semi-automatic workflow of the dissertation
-//! (training boxes §3.1.2, rectification §3.1.1, plan §5.1, correspondences §6.1.1) as a local
+//! (training boxes §3.1.2, rectification §3.1.1, plan cleaning §5.1.1 and parsing §5.1,
+//! correspondences §6.1.1) as a local
 //! web app — an HTTP API over one project folder and a page embedded in the binary.
 
 mod api;
+mod clean;
+#[cfg(test)]
+mod edit_tests;
+mod lines;
 mod stages;
 mod store;
 #[cfg(test)]
@@ -89,8 +94,14 @@ pub fn router(app: Arc<api::App>) -> Router {
         .route("/api/progress", get(api::progress))
         .route("/api/upload", post(api::upload))
         .route("/api/plan", post(stages::plan))
+        .route("/api/plan/binary", get(clean::binary))
+        .route("/api/plan/cleaning", put(clean::save))
         .route("/api/facades/{name}/rectify", post(stages::rectify))
         .route("/api/facades/{name}/training", put(stages::training))
+        .route(
+            "/api/facades/{name}/lines",
+            put(lines::save).delete(lines::remove),
+        )
         .route("/api/facades/{name}/facade", post(stages::facade_stage))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))

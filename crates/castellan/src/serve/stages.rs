@@ -108,6 +108,12 @@ pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> R
             "overlay": file_url(&overlay), "rectified": file_url(&rectified),
             "width": r.width, "height": r.height,
             "horizontal": r.horizontal.len(), "vertical": r.vertical.len(),
+            // The segments used, as handles for the page to drag (LINES.json's format).
+            "lines": {
+                "horizontal": super::lines::as_json(&r.horizontal),
+                "vertical": super::lines::as_json(&r.vertical),
+            },
+            "manual": lines.is_some(),
             "ms": t.elapsed().as_millis(),
         })))
     })

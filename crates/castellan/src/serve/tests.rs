@@ -11,7 +11,7 @@ use tower::ServiceExt;
 
 use super::{api, router, store};
 
-fn demo_project() -> tempfile::TempDir {
+pub(super) fn demo_project() -> tempfile::TempDir {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
     let dir = tempfile::tempdir().unwrap();
     for e in std::fs::read_dir(src).unwrap() {
@@ -22,26 +22,31 @@ fn demo_project() -> tempfile::TempDir {
 }
 
 /// PROJECT.toml as saved (a façade may still wait for its correspondence).
-fn saved_project(dir: &Path) -> integrate::project::Project {
+pub(super) fn saved_project(dir: &Path) -> integrate::project::Project {
     store::Store::open(dir).unwrap().load().unwrap().unwrap()
 }
 
-fn app(dir: &Path, max_upload: usize) -> axum::Router {
+pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
     router(api::App::new(store::Store::open(dir).unwrap(), max_upload))
 }
 
-async fn send(app: &axum::Router, req: Request<Body>) -> (StatusCode, Vec<u8>) {
+pub(super) async fn send(app: &axum::Router, req: Request<Body>) -> (StatusCode, Vec<u8>) {
     let res = app.clone().oneshot(req).await.unwrap();
     let status = res.status();
     let body = res.into_body().collect().await.unwrap().to_bytes().to_vec();
     (status, body)
 }
 
-async fn get(app: &axum::Router, uri: &str) -> (StatusCode, Vec<u8>) {
+pub(super) async fn get(app: &axum::Router, uri: &str) -> (StatusCode, Vec<u8>) {
     send(app, Request::get(uri).body(Body::empty()).unwrap()).await
 }
 
-async fn json(app: &axum::Router, method: &str, uri: &str, body: &str) -> (StatusCode, Value) {
+pub(super) async fn json(
+    app: &axum::Router,
+    method: &str,
+    uri: &str,
+    body: &str,
+) -> (StatusCode, Value) {
     let req = Request::builder()
         .method(method)
         .uri(uri)
@@ -52,7 +57,7 @@ async fn json(app: &axum::Router, method: &str, uri: &str, body: &str) -> (Statu
     (s, serde_json::from_slice(&b).unwrap_or(Value::Null))
 }
 
-fn multipart(kind: &str, file_name: &str, bytes: &[u8]) -> Request<Body> {
+pub(super) fn multipart(kind: &str, file_name: &str, bytes: &[u8]) -> Request<Body> {
     let b = "castellanboundary";
     let mut body = format!(
         "--{b}\r\nContent-Disposition: form-data; name=\"kind\"\r\n\r\n{kind}\r\n--{b}\r\nContent-Disposition: form-data; name=\"file\"; filename=\"{file_name}\"\r\nContent-Type: application/octet-stream\r\n\r\n"
@@ -66,12 +71,17 @@ fn multipart(kind: &str, file_name: &str, bytes: &[u8]) -> Request<Body> {
         .unwrap()
 }
 
-async fn upload(app: &axum::Router, kind: &str, name: &str, bytes: &[u8]) -> (StatusCode, Value) {
+pub(super) async fn upload(
+    app: &axum::Router,
+    kind: &str,
+    name: &str,
+    bytes: &[u8],
+) -> (StatusCode, Value) {
     let (s, b) = send(app, multipart(kind, name, bytes)).await;
     (s, serde_json::from_slice(&b).unwrap())
 }
 
-fn png_bytes(w: u32, h: u32) -> Vec<u8> {
+pub(super) fn png_bytes(w: u32, h: u32) -> Vec<u8> {
     let img = image::RgbImage::from_fn(w, h, |x, y| image::Rgb([(x * 7) as u8, (y * 5) as u8, 90]));
     crate::images::png(&img, Path::new("t.png")).unwrap()
 }

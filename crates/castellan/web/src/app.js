@@ -1,11 +1,15 @@
-// The `castellan serve` page: plan → façades (upload, rectification overlay, training boxes
-// drawn with the mouse, façade overlay) → correspondences (click a façade point, then plan
-// point(s)) → reconstruction shown in the model viewer. Every change is saved by the server.
+// The `castellan serve` page: plan (upload, cleaning with a brush §5.1.1, labels overlay) →
+// façades (upload, training boxes drawn with the mouse, rectification segments to drag §3.1.1,
+// façade overlay) → correspondences (click a façade point, then plan point(s)) → reconstruction
+// shown in the model viewer. Every change is saved by the server.
 import { showModel } from './viewer.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744' };
-const state = { project: null, training: {}, facade: null, photos: {}, pending: null, corr: [] };
+const state = {
+  project: null, training: {}, facade: null, photos: {}, pending: null, corr: [],
+  strokes: [], lines: { horizontal: [], vertical: [] },
+};
 
 function status(text, error = false) {
   const s = $('status');
@@ -26,13 +30,33 @@ async function api(method, url, body) {
   return data;
 }
 
+// Shows the server's running step: its elapsed time and, when it ran before, a bar measured
+// against its last duration.
+function showProgress(label, p) {
+  const bar = $('progress');
+  const secs = (ms) => (ms / 1000).toFixed(1);
+  let text = `${label}: ${p.running} ${secs(p.elapsed_ms)} s`;
+  if (p.expected_ms) {
+    text += ` (last time ${secs(p.expected_ms)} s)`;
+    bar.max = p.expected_ms;
+    bar.value = Math.min(p.elapsed_ms, 0.99 * p.expected_ms);
+  } else bar.removeAttribute('value');
+  status(text);
+}
+
 // Runs a step, showing the server's progress while it lasts and the outcome after; null on failure.
 async function step(label, work) {
   status(`${label}…`);
-  const poll = setInterval(async () => {
+  const bar = $('progress');
+  bar.removeAttribute('value');
+  bar.hidden = false;
+  let done = false;
+  const poll = async () => {
     const p = await api('GET', '/api/progress').catch(() => null);
-    if (p && p.running) status(`${label}: ${p.running} ${(p.elapsed_ms / 1000).toFixed(1)} s`);
-  }, 500);
+    if (!done && p && p.running) showProgress(label, p);
+  };
+  const timer = setInterval(poll, 250);
+  poll();
   try {
     const out = await work();
     status(`${label}: done`);
@@ -42,7 +66,9 @@ async function step(label, work) {
     status(`${label}: ${e.message}`, true);
     return null;
   } finally {
-    clearInterval(poll);
+    done = true;
+    clearInterval(timer);
+    bar.hidden = true;
   }
 }
 
@@ -106,13 +132,100 @@ function cross(ctx, [x, y], colour) {
 }
 
 // ---- 1 plan
+let redrawPlan = () => {};
+let painting = null;
+
+function drawStrokes(ctx) {
+  ctx.lineCap = 'round';
+  ctx.lineJoin = 'round';
+  for (const s of state.strokes) {
+    const colour = s.ink ? '#000' : '#fff';
+    ctx.strokeStyle = colour;
+    ctx.fillStyle = colour;
+    ctx.lineWidth = 2 * s.radius;
+    ctx.beginPath();
+    if (s.points.length === 1) {
+      ctx.arc(s.points[0][0], s.points[0][1], s.radius, 0, 2 * Math.PI);
+      ctx.fill();
+    } else {
+      ctx.moveTo(...s.points[0]);
+      for (const pt of s.points.slice(1)) ctx.lineTo(...pt);
+      ctx.stroke();
+    }
+  }
+}
+
+function showStrokeCount(note) {
+  $('clean-info').dataset.strokes = String(state.strokes.length);
+  $('clean-info').textContent = `${state.strokes.length} strokes (${note})`;
+}
+
 async function showPlan() {
   const p = state.project;
   if (!p) return;
-  $('plan-image').src = fresh(`/files/${p.plan}`);
+  // The binary image of the uploaded drawing, with the saved strokes painted again on it.
+  const binary = await loadImage(fresh('/api/plan/binary'));
+  redrawPlan = canvasImage($('plan-canvas'), binary, drawStrokes);
+  showStrokeCount(p.plan === (state.cleaning && state.cleaning.original) ? 'original drawing' : `saved as ${p.plan}`);
   state.planImage = await loadImage(fresh(`/files/${p.plan}`));
   drawCorrespondences();
 }
+
+const brushSize = () => Number($('brush-size').value);
+$('brush-size').addEventListener('input', () => { $('brush-size-value').value = String(brushSize()); });
+
+$('plan-canvas').addEventListener('mousedown', (ev) => {
+  const ink = document.querySelector('input[name=brush]:checked').value === 'ink';
+  painting = { ink, radius: brushSize() / 2, points: [toImagePixels($('plan-canvas'), ev)] };
+  state.strokes.push(painting);
+  redrawPlan();
+});
+$('plan-canvas').addEventListener('mousemove', (ev) => {
+  if (!painting) return;
+  const pt = toImagePixels($('plan-canvas'), ev);
+  const last = painting.points[painting.points.length - 1];
+  if (Math.hypot(pt[0] - last[0], pt[1] - last[1]) < 1) return;
+  painting.points.push(pt);
+  redrawPlan();
+});
+window.addEventListener('mouseup', () => {
+  if (!painting) return;
+  painting.points = painting.points.map(([x, y]) => [Math.round(x * 10) / 10, Math.round(y * 10) / 10]);
+  painting = null;
+  showStrokeCount('unsaved');
+});
+
+$('clean-undo').addEventListener('click', () => {
+  state.strokes.pop();
+  redrawPlan();
+  showStrokeCount('unsaved');
+});
+
+$('clean-reset').addEventListener('click', () => {
+  state.strokes = [];
+  redrawPlan();
+  showStrokeCount('unsaved: Save to go back to the original');
+});
+
+async function parsePlan() {
+  const r = await step('Parsing the plan', () => api('POST', '/api/plan'));
+  if (!r) return;
+  $('plan-info').textContent = `${r.faces} regions, ${r.edges} edges in ${r.ms} ms`;
+  $('plan-info').dataset.faces = String(r.faces);
+  await showOverlay('plan-overlay', r.overlay);
+  markDone('plan');
+}
+
+$('clean-save').addEventListener('click', async () => {
+  const r = await step('Saving the cleaned plan', () =>
+    api('PUT', '/api/plan/cleaning', { strokes: state.strokes }));
+  if (!r) return;
+  state.project.plan = r.plan;
+  showStrokeCount(`saved as ${r.plan}, ${r.changed_pixels} pixels changed`);
+  state.planImage = await loadImage(fresh(r.url));
+  drawCorrespondences();
+  await parsePlan();
+});
 
 $('plan-file').addEventListener('change', async (ev) => {
   const file = ev.target.files[0];
@@ -121,13 +234,7 @@ $('plan-file').addEventListener('change', async (ev) => {
   await refresh().catch((e) => status(e.message, true));
 });
 
-$('plan-run').addEventListener('click', async () => {
-  const r = await step('Parsing the plan', () => api('POST', '/api/plan'));
-  if (!r) return;
-  $('plan-info').textContent = `${r.faces} regions, ${r.edges} edges in ${r.ms} ms`;
-  await showOverlay('plan-overlay', r.overlay);
-  markDone('plan');
-});
+$('plan-run').addEventListener('click', parsePlan);
 
 // ---- 2 façades
 let redrawPhoto = () => {};
@@ -168,6 +275,15 @@ async function selectFacade(name) {
   state.photos[name] = img;
   redrawPhoto = canvasImage($('facade-canvas'), img, drawBoxes);
   showBoxCount('saved');
+  // The façade's saved segments, if any; otherwise the detected ones appear after Rectify.
+  const entry = ((state.project && state.project.facade) || []).find((f) => f.image === name);
+  state.lines = { horizontal: [], vertical: [] };
+  state.selected = null;
+  if (entry && entry.lines) {
+    state.lines = await api('GET', fresh(`/files/${entry.lines}`)).catch(() => state.lines);
+  }
+  redrawLines = canvasImage($('lines-canvas'), img, drawLines);
+  showLines(entry && entry.lines ? `yours, from ${entry.lines}` : 'Rectify to see the detected ones');
   for (const id of ['rectify-overlay', 'facade-overlay']) $(id).removeAttribute('src');
   drawCorrespondences();
 }
@@ -222,13 +338,143 @@ $('boxes-save').addEventListener('click', async () => {
   $('boxes-info').textContent = `${r.boxes} boxes saved to ${r.saved}`;
 });
 
-$('facade-rectify').addEventListener('click', async () => {
+async function rectify() {
   const name = state.facade;
   const r = await step('Rectifying', () => api('POST', `/api/facades/${encodeURIComponent(name)}/rectify`));
   if (!r) return;
   $('facade-info').textContent =
     `${r.horizontal} horizontal, ${r.vertical} vertical segments; ${r.width}×${r.height} in ${r.ms} ms`;
+  state.lines = r.lines;
+  state.selected = null;
+  showLines(r.manual ? 'yours' : 'detected');
   await showOverlay('rectify-overlay', r.overlay);
+}
+
+$('facade-rectify').addEventListener('click', rectify);
+
+// ---- 2b rectification segments: drag an end, draw a new one, select and remove one
+let redrawLines = () => {};
+let lineDrag = null;
+
+function showLines(note) {
+  const { horizontal, vertical } = state.lines;
+  const info = $('lines-info');
+  $('lines-canvas').dataset.segments = JSON.stringify(state.lines);
+  info.dataset.horizontal = String(horizontal.length);
+  info.dataset.vertical = String(vertical.length);
+  info.textContent = `${horizontal.length} horizontal, ${vertical.length} vertical (${note})`;
+  redrawLines();
+}
+
+function handleSize(canvas) {
+  return Math.max(5, canvas.width / 90);
+}
+
+function drawLines(ctx) {
+  const h = handleSize(ctx.canvas);
+  for (const [family, colour] of [['horizontal', '#e53935'], ['vertical', '#1e88e5']]) {
+    state.lines[family].forEach((seg, i) => {
+      const chosen = state.selected && state.selected.family === family && state.selected.index === i;
+      ctx.strokeStyle = chosen ? '#ffd600' : colour;
+      ctx.lineWidth = Math.max(2, h / 2.5);
+      ctx.beginPath();
+      ctx.moveTo(seg[0], seg[1]);
+      ctx.lineTo(seg[2], seg[3]);
+      ctx.stroke();
+      ctx.fillStyle = colour;
+      for (const k of [0, 2]) ctx.fillRect(seg[k] - h / 2, seg[k + 1] - h / 2, h, h);
+    });
+  }
+}
+
+function distanceToSegment([px, py], [x0, y0, x1, y1]) {
+  const [dx, dy] = [x1 - x0, y1 - y0];
+  const len2 = dx * dx + dy * dy;
+  const t = len2 ? Math.min(1, Math.max(0, ((px - x0) * dx + (py - y0) * dy) / len2)) : 0;
+  return Math.hypot(px - x0 - t * dx, py - y0 - t * dy);
+}
+
+// The segment end under the pointer, else the segment under it, else null.
+function hitLine(pt, tolerance) {
+  let best = null;
+  for (const family of ['horizontal', 'vertical']) {
+    state.lines[family].forEach((seg, index) => {
+      for (const end of [0, 1]) {
+        const d = Math.hypot(pt[0] - seg[2 * end], pt[1] - seg[2 * end + 1]);
+        if (d <= tolerance && (!best || best.end === undefined || d < best.d)) best = { family, index, end, d };
+      }
+      const d = distanceToSegment(pt, seg);
+      if (d <= tolerance / 2 && !best) best = { family, index, d };
+    });
+  }
+  return best;
+}
+
+function setFacadeLines(name, file) {
+  const entry = ((state.project && state.project.facade) || []).find((f) => f.image === name);
+  if (entry) entry.lines = file;
+}
+
+const linesCanvas = $('lines-canvas');
+linesCanvas.addEventListener('mousedown', (ev) => {
+  const pt = toImagePixels(linesCanvas, ev);
+  const hit = hitLine(pt, handleSize(linesCanvas) * 1.5);
+  if (hit && hit.end !== undefined) {
+    lineDrag = { ...hit, moved: false };
+  } else if (hit) {
+    state.selected = { family: hit.family, index: hit.index };
+    redrawLines();
+  } else {
+    const family = document.querySelector('input[name=family]:checked').value;
+    state.lines[family].push([pt[0], pt[1], pt[0], pt[1]]);
+    lineDrag = { family, index: state.lines[family].length - 1, end: 1, fresh: true, moved: false };
+  }
+});
+linesCanvas.addEventListener('mousemove', (ev) => {
+  if (!lineDrag) return;
+  const [x, y] = toImagePixels(linesCanvas, ev);
+  const seg = state.lines[lineDrag.family][lineDrag.index];
+  seg[2 * lineDrag.end] = x;
+  seg[2 * lineDrag.end + 1] = y;
+  lineDrag.moved = true;
+  redrawLines();
+});
+window.addEventListener('mouseup', () => {
+  if (!lineDrag) return;
+  const d = lineDrag;
+  lineDrag = null;
+  const list = state.lines[d.family];
+  const seg = list[d.index];
+  if (d.fresh && Math.hypot(seg[2] - seg[0], seg[3] - seg[1]) < 5) list.splice(d.index, 1);
+  else list[d.index] = seg.map((v) => Math.round(v * 10) / 10);
+  if (d.moved) showLines('unsaved');
+  else redrawLines();
+});
+
+$('lines-remove').addEventListener('click', () => {
+  const sel = state.selected;
+  if (!sel) { status('Click a segment to select it first', true); return; }
+  state.lines[sel.family].splice(sel.index, 1);
+  state.selected = null;
+  showLines('unsaved');
+});
+
+$('lines-save').addEventListener('click', async () => {
+  const name = state.facade;
+  const r = await step('Saving the lines', () =>
+    api('PUT', `/api/facades/${encodeURIComponent(name)}/lines`, state.lines));
+  if (!r) return;
+  setFacadeLines(name, r.saved);
+  await rectify();
+});
+
+$('lines-auto').addEventListener('click', async () => {
+  const name = state.facade;
+  const r = await step('Back to automatic lines', () =>
+    api('DELETE', `/api/facades/${encodeURIComponent(name)}/lines`));
+  if (!r) return;
+  setFacadeLines(name, null);
+  await rectify();
 });
 
 $('facade-run').addEventListener('click', async () => {
@@ -336,6 +582,8 @@ async function refresh() {
   state.project = p.project;
   state.training = p.training || {};
   state.corr = (p.project && p.project.correspondence) || [];
+  state.cleaning = p.cleaning;
+  state.strokes = (p.cleaning && p.cleaning.strokes) || [];
   const select = $('facade-select');
   const facades = (p.project && p.project.facade) || [];
   select.replaceChildren(...facades.map((f) => new Option(f.image, f.image)));

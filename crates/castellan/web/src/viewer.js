@@ -1,6 +1,7 @@
 // castellan's model viewer: a glTF model, either embedded in the page (base64, so the report
 // opens from disk with no server and no network) or fetched by URL (`castellan serve`), with
-// orbit controls and an outline to hide or show each structure and each kind of terminal shape.
+// orbit controls and an outline to hide or show each structure and each kind of terminal shape,
+// and to peel the walls away (§1.8: hide every wall, or cut the model at a height) to see inside.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -167,10 +168,40 @@ export function showModel(container, outline, source, estimate) {
       describe(panel, hit.object, name, info);
     });
     const hidden = new Set();
+    // Walls are the parts whose symbol or structure is named a wall (keep1Wall_S, tower1Wall,
+    // the curtain wall's segments): peeling them leaves floors, roofs and what is inside.
+    const walls = new Set();
+    model.traverse((o) => {
+      if (!o.isMesh) return;
+      for (let n = o; n && n !== root; n = n.parent) {
+        if (/wall/i.test((n.userData && n.userData.name) || n.name || '')) walls.add(o);
+      }
+    });
+    let peeled = false;
     const apply = () => {
+      let visible = 0;
       model.traverse((o) => {
-        if (o.isMesh) o.visible = !hidden.has(o);
+        if (!o.isMesh) return;
+        o.visible = !hidden.has(o) && !(peeled && walls.has(o));
+        visible += o.visible ? 1 : 0;
       });
+      container.dataset.visibleMeshes = String(visible);
+      render();
+    };
+    // A horizontal cut: everything above the plane is clipped away, so rooms show from above.
+    renderer.localClippingEnabled = true;
+    const cut = new THREE.Plane(new THREE.Vector3(0, -1, 0), box.max.y);
+    model.traverse((o) => {
+      if (!o.isMesh) return;
+      for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
+        m.clippingPlanes = [cut];
+        // The inside faces of a cut wall show instead of a hole.
+        m.side = THREE.DoubleSide;
+      }
+    });
+    const setCut = (percent) => {
+      cut.constant = box.min.y + ((box.max.y - box.min.y) * percent) / 100 + (percent >= 100 ? size : 0);
+      container.dataset.cut = String(percent);
       render();
     };
     const toggle = (meshes) => (on) => {
@@ -181,6 +212,35 @@ export function showModel(container, outline, source, estimate) {
       apply();
     };
     if (outline) {
+      const peel = document.createElement('div');
+      peel.className = 'peel';
+      const peelRow = document.createElement('label');
+      peelRow.style.display = 'block';
+      const peelBox = document.createElement('input');
+      peelBox.type = 'checkbox';
+      peelBox.dataset.peel = 'walls';
+      peelBox.addEventListener('change', () => {
+        peeled = peelBox.checked;
+        apply();
+      });
+      peelRow.append(peelBox, ` Peel walls (${walls.size} parts)`);
+      const cutRow = document.createElement('label');
+      cutRow.style.display = 'block';
+      const cutValue = document.createElement('span');
+      cutValue.textContent = '100 %';
+      const cutSlider = document.createElement('input');
+      cutSlider.type = 'range';
+      cutSlider.min = '0';
+      cutSlider.max = '100';
+      cutSlider.value = '100';
+      cutSlider.dataset.cut = 'height';
+      cutSlider.addEventListener('input', () => {
+        cutValue.textContent = `${cutSlider.value} %`;
+        setCut(Number(cutSlider.value));
+      });
+      cutRow.append('Cut height ', cutValue, cutSlider);
+      peel.append(peelRow, cutRow);
+      outline.append(peel);
       const h1 = document.createElement('b');
       h1.textContent = 'Structures';
       outline.append(h1);
@@ -196,7 +256,9 @@ export function showModel(container, outline, source, estimate) {
     }
     container.dataset.meshes = String(structures.size ? [...structures.values()].flat().length : 0);
     container.dataset.structures = String(structures.size);
-    render();
+    container.dataset.walls = String(walls.size);
+    setCut(100);
+    apply();
     container.dataset.ready = 'true';
   };
   const failed = (err) => {
