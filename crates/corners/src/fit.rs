@@ -123,6 +123,14 @@ impl Moments {
         m[14] += wy3 * y;
         self.n += 1;
     }
+
+    /// The moments of these points without `other`'s (a subset of them).
+    pub fn minus(&self, other: &Moments) -> Moments {
+        Moments {
+            n: self.n.saturating_sub(other.n),
+            m: std::array::from_fn(|k| self.m[k] - other.m[k]),
+        }
+    }
 }
 
 /// The fit of [`fit_hyperbola`] from moments of points scaled by `1/scale`.
