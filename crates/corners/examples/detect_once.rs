@@ -6,7 +6,15 @@ fn main() {
     let img = image::open(&path).expect("readable image");
     let g = corners::Gray::from_dynamic(&img);
     let t = std::time::Instant::now();
-    let found = corners::detect(&g, &corners::Params::default()).expect("default parameters");
+    // FIRST_FIT_SLACK=s tries the first-fit gate (see `Params::first_fit_slack`).
+    let params = corners::Params {
+        first_fit_slack: std::env::var("FIRST_FIT_SLACK")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0.0),
+        ..corners::Params::default()
+    };
+    let found = corners::detect(&g, &params).expect("valid parameters");
     println!(
         "{} corners, {:.1} ms",
         found.corners.len(),

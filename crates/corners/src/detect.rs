@@ -53,6 +53,11 @@ pub struct Params {
     /// the thresholds would keep (5–10 % on Oxford graf/bikes, all near-straight junctions),
     /// which slightly raised repeatability there. 1 disables it.
     pub max_coherence: f64,
+    /// Speed-up, not in §2.1.3: apply the shape thresholds (corner inside the window, Δ, ψ) to
+    /// the first fit, scaled by this slack (Δ bound × slack², window half-side × slack, ψ
+    /// range widened by a factor slack), and gather and refit only the windows that pass.
+    /// 0 disables it (every window is refitted, as §2.1.3 reads).
+    pub first_fit_slack: f64,
 }
 
 impl Default for Params {
@@ -70,6 +75,7 @@ impl Default for Params {
             rectified: false,
             rectified_tolerance: 10f64.to_radians(),
             max_coherence: 0.97,
+            first_fit_slack: 0.0,
         }
     }
 }
@@ -94,6 +100,7 @@ impl Params {
             self.refit_distance,
             self.rectified_tolerance,
             self.max_coherence,
+            self.first_fit_slack,
         ];
         if finite.iter().any(|v| !v.is_finite()) {
             return bad("thresholds must be finite numbers");
@@ -401,6 +408,17 @@ fn evaluate(
     // inside by discarding outliers, so the refit is not tried.
     if h.s[0].abs() > 2.0 * r || h.s[1].abs() > 2.0 * r {
         return None;
+    }
+    let slack = params.first_fit_slack;
+    if slack > 0.0 {
+        let (lo, hi) = (params.psi_range.0 / slack, params.psi_range.1 * slack);
+        if h.s[0].abs() > slack * r
+            || h.s[1].abs() > slack * r
+            || !(q.delta().abs() < params.max_delta * slack * slack)
+            || !(h.psi > lo && h.psi < hi)
+        {
+            return None;
+        }
     }
     if params.refit {
         let dropped = gather(win, &h, params.refit_distance);
