@@ -415,6 +415,11 @@ pub struct DetectorArgs {
     /// 1 fits every window (speed-up, not in §2.1).
     #[arg(long, default_value_t = corners::Params::default().max_coherence, value_parser = parse_positive)]
     pub max_coherence: f64,
+    /// Refit only windows whose first fit passes the shape thresholds loosened by this factor
+    /// (corner within slack × W/2, Δ < slack² × bound, ψ range widened); 0 refits every window
+    /// (speed-up, not in §2.1.3).
+    #[arg(long, default_value_t = corners::Params::default().first_fit_slack, value_parser = parse_finite)]
+    pub first_fit_slack: f64,
 }
 
 impl DetectorArgs {
@@ -431,6 +436,7 @@ impl DetectorArgs {
             rectified: self.rectified,
             refit_distance: self.refit_distance,
             max_coherence: self.max_coherence,
+            first_fit_slack: self.first_fit_slack,
             ..corners::Params::default()
         }
     }
@@ -602,6 +608,11 @@ mod flag_tests {
             .detector
             .params();
         assert_eq!((p.refit_distance, p.max_coherence), (1.5, 1.0));
+        let p = corners_args(&["--first-fit-slack", "1.5"])
+            .unwrap()
+            .detector
+            .params();
+        assert_eq!(p.first_fit_slack, 1.5);
         assert!(corners_args(&["--refit-distance", "0"]).is_err());
     }
 

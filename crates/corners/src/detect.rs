@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::edge::{EdgeMap, Gray, edge_map};
 use crate::fit::{Asymptotes, Moments, fit_moments};
+use crate::sat::{EdgePoint, MomentTable, TILE};
 
 /// Every parameter of the detector. Defaults are those of §2.1 except where noted.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -52,6 +53,11 @@ pub struct Params {
     /// the thresholds would keep (5–10 % on Oxford graf/bikes, all near-straight junctions),
     /// which slightly raised repeatability there. 1 disables it.
     pub max_coherence: f64,
+    /// Speed-up, not in §2.1.3: apply the shape thresholds (corner inside the window, Δ, ψ) to
+    /// the first fit, scaled by this slack (Δ bound × slack², window half-side × slack, ψ
+    /// range widened by a factor slack), and gather and refit only the windows that pass.
+    /// 0 disables it (every window is refitted, as §2.1.3 reads).
+    pub first_fit_slack: f64,
 }
 
 impl Default for Params {
@@ -69,6 +75,7 @@ impl Default for Params {
             rectified: false,
             rectified_tolerance: 10f64.to_radians(),
             max_coherence: 0.97,
+            first_fit_slack: 0.0,
         }
     }
 }
@@ -93,6 +100,7 @@ impl Params {
             self.refit_distance,
             self.rectified_tolerance,
             self.max_coherence,
+            self.first_fit_slack,
         ];
         if finite.iter().any(|v| !v.is_finite()) {
             return bad("thresholds must be finite numbers");
@@ -143,12 +151,16 @@ pub fn detect(img: &Gray, params: &Params) -> Result<Corners, crate::Error> {
 }
 
 /// Every edge point's candidate corner that passes the thresholds of §2.1.5.
+///
+/// Window centres are visited tile by tile (see [`crate::sat`]): each tile builds one table of
+/// scatter moments from which every window's first fit is read in O(1).
 pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
     let (w, h) = (edges.width, edges.height);
     let r = (params.window / 2) as isize;
     if edges.mean <= 0.0 || w == 0 {
         return Vec::new();
     }
+    let scale = (r as f64).max(1.0);
     let sums = WindowSums::new(edges);
     // Edge points row by row, so a window gathers its points without scanning its empty pixels.
     let rows: Vec<Vec<EdgePoint>> = (0..h)
@@ -174,49 +186,86 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
                 .collect()
         })
         .collect();
-    (0..h)
+    let clip_x = |x: isize| x.clamp(0, w as isize - 1) as usize;
+    let clip_y = |y: isize| y.clamp(0, h as isize - 1) as usize;
+    (0..h.div_ceil(TILE))
         .into_par_iter()
-        .flat_map_iter(|y| {
-            let mut win = Window::with_capacity(params.window * params.window);
+        .flat_map_iter(|ty| {
+            let mut win = Window::with_capacity(params.window * params.window, scale);
+            let mut table = MomentTable::default();
             let mut out = Vec::new();
-            let (y0, y1) = (
-                (y as isize - r).max(0) as usize,
-                (y as isize + r).min(h as isize - 1) as usize,
-            );
-            let band = &rows[y0..=y1];
-            // Windows slide left to right along the row, so each band row's span of points in
-            // the window only moves right: two cursors per row replace a search per window.
-            let mut lo = vec![0usize; band.len()];
-            let mut hi = vec![0usize; band.len()];
-            for centre in &rows[y] {
-                let x = centre.col;
-                let (x0, x1) = ((x - r).max(0), (x + r).min(w as isize - 1));
-                let [n, c2, s2] = sums.sum(x0 as usize, y0, x1 as usize, y1);
-                // §2.1.2: fewer than W edge points in the window is a short or noisy contour.
-                if n < params.window as f64 - 0.5 {
+            let (ty0, ty1) = (ty * TILE, ((ty + 1) * TILE).min(h));
+            let band = &rows[clip_y(ty0 as isize - r)..=clip_y(ty1 as isize - 1 + r)];
+            let band_y0 = clip_y(ty0 as isize - r);
+            let mut lo = vec![0usize; 2 * r as usize + 1];
+            let mut hi = vec![0usize; 2 * r as usize + 1];
+            for tx in 0..w.div_ceil(TILE) {
+                let (tx0, tx1) = (tx * TILE, ((tx + 1) * TILE).min(w));
+                let in_tile = |row: &Vec<EdgePoint>| {
+                    let a = row.partition_point(|p| (p.col as usize) < tx0);
+                    let b = row.partition_point(|p| (p.col as usize) < tx1);
+                    a..b
+                };
+                if rows[ty0..ty1].iter().all(|row| in_tile(row).is_empty()) {
                     continue;
                 }
-                if (c2 * c2 + s2 * s2).sqrt() > params.max_coherence * n {
-                    continue;
-                }
-                win.clear();
-                let (cx, cy) = (x as f64, y as f64);
-                for (k, row) in band.iter().enumerate() {
-                    while lo[k] < row.len() && row[lo[k]].col < x0 {
-                        lo[k] += 1;
+                let origin = [(tx0 + tx1 - 1) as f64 / 2.0, (ty0 + ty1 - 1) as f64 / 2.0];
+                table.build(
+                    &rows,
+                    (clip_x(tx0 as isize - r), clip_x(tx1 as isize - 1 + r) + 1),
+                    (band_y0, clip_y(ty1 as isize - 1 + r) + 1),
+                    origin,
+                    scale,
+                );
+                for y in ty0..ty1 {
+                    let (y0, y1) = (clip_y(y as isize - r), clip_y(y as isize + r));
+                    let window_rows = &band[y0 - band_y0..=y1 - band_y0];
+                    // Windows slide left to right along the row, so each window row's span of
+                    // points only moves right: two cursors per row replace a search per window.
+                    let left = tx0 as isize - r;
+                    for (k, row) in window_rows.iter().enumerate() {
+                        lo[k] = row.partition_point(|p| p.col < left);
+                        hi[k] = lo[k];
                     }
-                    hi[k] = hi[k].max(lo[k]);
-                    while hi[k] < row.len() && row[hi[k]].col <= x1 {
-                        hi[k] += 1;
+                    for centre in &rows[y][in_tile(&rows[y])] {
+                        let x = centre.col;
+                        let (x0, x1) = (clip_x(x - r), clip_x(x + r));
+                        let [n, c2, s2] = sums.sum(x0, y0, x1, y1);
+                        // §2.1.2: fewer than W edge points in the window is a short or noisy
+                        // contour.
+                        if n < params.window as f64 - 0.5 {
+                            continue;
+                        }
+                        if (c2 * c2 + s2 * s2).sqrt() > params.max_coherence * n {
+                            continue;
+                        }
+                        let (cx, cy) = (x as f64, y as f64);
+                        let first = table.window((x0, x1), (y0, y1), [cx, cy]);
+                        // The window's points are gathered only once the first fit has
+                        // succeeded, and only those the refit keeps (§2.1.3).
+                        let gather = |win: &mut Window, h: &Asymptotes, d: f64| {
+                            let mut dropped = Moments::default();
+                            win.clear();
+                            for (k, row) in window_rows.iter().enumerate() {
+                                while lo[k] < row.len() && row[lo[k]].col < x0 as isize {
+                                    lo[k] += 1;
+                                }
+                                hi[k] = hi[k].max(lo[k]);
+                                while hi[k] < row.len() && row[hi[k]].col <= x1 as isize {
+                                    hi[k] += 1;
+                                }
+                                for p in &row[lo[k]..hi[k]] {
+                                    win.keep_near(p.x - cx, p.y - cy, p.w2, h, d, &mut dropped);
+                                }
+                            }
+                            dropped
+                        };
+                        if let Some(mut c) = evaluate(&mut win, &first, gather, r as f64, params) {
+                            c.x += cx;
+                            c.y += cy;
+                            out.push(c);
+                        }
                     }
-                    for p in &row[lo[k]..hi[k]] {
-                        win.push(p.x - cx, p.y - cy, p.w2);
-                    }
-                }
-                if let Some(mut c) = evaluate(&mut win, r as f64, params) {
-                    c.x += cx;
-                    c.y += cy;
-                    out.push(c);
                 }
             }
             out
@@ -224,73 +273,72 @@ pub fn candidates(edges: &EdgeMap, params: &Params) -> Vec<Corner> {
         .collect()
 }
 
-/// One point of Ê for the window fits: its pixel column, sub-pixel position and squared weight.
-struct EdgePoint {
-    col: isize,
-    x: f64,
-    y: f64,
-    w2: f64,
-}
-
-/// The points of one window relative to its centre, as separate coordinate arrays so the loops
-/// over them vectorise; reused from window to window.
+/// The points of one window relative to its centre, as separate coordinate arrays with room
+/// for every pixel of the window (Ê has at most one point per pixel), so adding a point is a
+/// store and a count, without a branch; reused from window to window.
 struct Window {
     x: Vec<f64>,
     y: Vec<f64>,
     w2: Vec<f64>,
+    len: usize,
+    inv_scale: f64,
 }
 
 impl Window {
-    fn with_capacity(n: usize) -> Self {
+    /// Room for `n` points; the fit divides coordinates by `scale`.
+    fn with_capacity(n: usize, scale: f64) -> Self {
         Self {
-            x: Vec::with_capacity(n),
-            y: Vec::with_capacity(n),
-            w2: Vec::with_capacity(n),
+            x: vec![0.0; n],
+            y: vec![0.0; n],
+            w2: vec![0.0; n],
+            len: 0,
+            inv_scale: 1.0 / scale,
         }
     }
 
     fn clear(&mut self) {
-        self.x.clear();
-        self.y.clear();
-        self.w2.clear();
+        self.len = 0;
     }
 
-    #[inline]
+    /// Stores a point in the next free slot; it counts only if `keep`.
+    #[inline(always)]
+    fn put(&mut self, x: f64, y: f64, w2: f64, keep: bool) {
+        let k = self.len;
+        self.x[k] = x;
+        self.y[k] = y;
+        self.w2[k] = w2;
+        self.len += keep as usize;
+    }
+
+    #[cfg(test)]
     fn push(&mut self, x: f64, y: f64, w2: f64) {
-        self.x.push(x);
-        self.y.push(y);
-        self.w2.push(w2);
+        self.put(x, y, w2, true);
     }
 
-    fn len(&self) -> usize {
-        self.x.len()
+    /// The stored coordinates.
+    fn points(&self) -> (&[f64], &[f64]) {
+        (&self.x[..self.len], &self.y[..self.len])
     }
 
-    /// Scatter moments of the points, coordinates divided by `scale`.
-    fn moments(&self, scale: f64) -> Moments {
-        let s = 1.0 / scale;
-        let mut mo = Moments::default();
-        for ((&x, &y), &w2) in self.x.iter().zip(&self.y).zip(&self.w2) {
-            mo.add(x * s, y * s, w2);
+    /// Adds a point (relative to the window centre) if it lies within `d` of either asymptote
+    /// of `h`, else adds its moments (coordinates divided by the fit's scale, `inv_scale` being
+    /// its inverse) to `dropped`: the refit's scatter is the first fit's minus the dropped
+    /// points', which costs nothing for the points that stay.
+    #[inline(always)]
+    fn keep_near(
+        &mut self,
+        x: f64,
+        y: f64,
+        w2: f64,
+        h: &Asymptotes,
+        d: f64,
+        dropped: &mut Moments,
+    ) {
+        let keep = h.distance(0, x, y).min(h.distance(1, x, y)) <= d;
+        self.put(x, y, w2, keep);
+        if !keep {
+            dropped.add(x * self.inv_scale, y * self.inv_scale, w2);
         }
-        mo
-    }
-
-    /// Keeps the points within `d` of either asymptote, in order.
-    fn retain_near(&mut self, h: &Asymptotes, d: f64) {
-        let mut k = 0;
-        for i in 0..self.len() {
-            let (x, y) = (self.x[i], self.y[i]);
-            if h.distance(0, x, y).min(h.distance(1, x, y)) <= d {
-                self.x[k] = x;
-                self.y[k] = y;
-                self.w2[k] = self.w2[i];
-                k += 1;
-            }
-        }
-        self.x.truncate(k);
-        self.y.truncate(k);
-        self.w2.truncate(k);
     }
 }
 
@@ -342,25 +390,45 @@ impl WindowSums {
     }
 }
 
-/// Fit, shape model, features and thresholds for the edge points of one window (coordinates
-/// relative to the window centre, `r` its half side). The refit drops points from the window.
-fn evaluate(pts: &mut Window, r: f64, params: &Params) -> Option<Corner> {
+/// Fit, shape model, features and thresholds for one window (`r` its half side) whose scatter
+/// moments (coordinates relative to its centre, divided by max(r, 1)) are `first`.
+/// `gather(win, h, d)` fills `win` with the window's points within `d` of either asymptote of
+/// `h` (relative to the centre) and returns the moments of the others.
+fn evaluate(
+    win: &mut Window,
+    first: &Moments,
+    gather: impl FnOnce(&mut Window, &Asymptotes, f64) -> Moments,
+    r: f64,
+    params: &Params,
+) -> Option<Corner> {
     let scale = r.max(1.0);
-    let mut q = fit_moments(&pts.moments(scale), scale)?;
+    let mut q = fit_moments(first, scale)?;
     let mut h = Asymptotes::of(&q)?;
     // Speed-up: a first corner more than a window away from the window is not brought back
     // inside by discarding outliers, so the refit is not tried.
     if h.s[0].abs() > 2.0 * r || h.s[1].abs() > 2.0 * r {
         return None;
     }
+    let slack = params.first_fit_slack;
+    if slack > 0.0 {
+        let (lo, hi) = (params.psi_range.0 / slack, params.psi_range.1 * slack);
+        if h.s[0].abs() > slack * r
+            || h.s[1].abs() > slack * r
+            || !(q.delta().abs() < params.max_delta * slack * slack)
+            || !(h.psi > lo && h.psi < hi)
+        {
+            return None;
+        }
+    }
     if params.refit {
-        let before = pts.len();
-        pts.retain_near(&h, params.refit_distance);
+        let dropped = gather(win, &h, params.refit_distance);
         // Nothing discarded: the refit would return the same curve.
-        if pts.len() < before {
-            q = fit_moments(&pts.moments(scale), scale)?;
+        if dropped.n > 0 {
+            q = fit_moments(&first.minus(&dropped), scale)?;
             h = Asymptotes::of(&q)?;
         }
+    } else {
+        gather(win, &h, f64::INFINITY);
     }
     // Our addition: the corner must lie inside the window whose points it was fitted to; an
     // intersection extrapolated beyond it is not supported by data.
@@ -381,7 +449,8 @@ fn evaluate(pts: &mut Window, r: f64, params: &Params) -> Option<Corner> {
     let (mut n1, mut n2, mut sum) = (0usize, 0usize, 0.0);
     // Signed extent of each line's inliers along its direction, to orient the directions.
     let mut along = [0.0f64; 2];
-    for (&x, &y) in pts.x.iter().zip(&pts.y) {
+    let (xs, ys) = win.points();
+    for (&x, &y) in xs.iter().zip(ys) {
         let (d1, d2) = (h.distance(0, x, y), h.distance(1, x, y));
         let d = d1.min(d2);
         if d > params.refit_distance {
@@ -607,12 +676,13 @@ mod tests {
     }
 
     #[test]
-    fn cursor_gathering_gives_the_windows_of_a_direct_scan() {
-        // Two overlapping squares: many edge points per row, windows clipped at the border.
-        let (w, h) = (48usize, 40usize);
+    fn tiled_moments_and_cursor_gathering_give_the_windows_of_a_direct_scan() {
+        // Two overlapping squares: many edge points per row, windows clipped at the border and
+        // straddling the tiles of the moment tables.
+        let (w, h) = (150usize, 90usize);
         let data = (0..w * h)
             .map(|i| {
-                let (x, y) = (i % w, i / w);
+                let (x, y) = ((i % w) % 75, (i / w) % 45);
                 let a = (3..30).contains(&x) && (2..25).contains(&y);
                 let b = (18..46).contains(&x) && (12..38).contains(&y);
                 40.0 + 90.0 * a as u8 as f32 + 70.0 * b as u8 as f32
@@ -631,25 +701,45 @@ mod tests {
                 if edges.mag[(y as usize) * w + x as usize] <= 0.0 {
                     continue;
                 }
-                let mut win = Window::with_capacity(0);
+                let mut all = Vec::new();
                 for yy in (y - r).max(0)..=(y + r).min(h as isize - 1) {
                     for xx in (x - r).max(0)..=(x + r).min(w as isize - 1) {
                         let i = yy as usize * w + xx as usize;
                         if edges.mag[i] > 0.0 {
                             let o = edges.offset[i];
                             let wt = (edges.mag[i] / edges.mean) as f64;
-                            win.push(
+                            all.push([
                                 xx as f64 + o[0] as f64 - x as f64,
                                 yy as f64 + o[1] as f64 - y as f64,
                                 wt * wt,
-                            );
+                            ]);
                         }
                     }
                 }
-                if win.len() < p.window {
+                if all.len() < p.window {
                     continue;
                 }
-                if let Some(mut c) = evaluate(&mut win, r as f64, &p) {
+                let scale = r as f64;
+                let mut first = Moments::default();
+                for q in &all {
+                    first.add(q[0] / scale, q[1] / scale, q[2]);
+                }
+                // The plain §2.1.3 refit: keep the points near the first asymptotes, refit them.
+                let gather = |win: &mut Window, h: &Asymptotes, d: f64| {
+                    win.clear();
+                    for q in &all {
+                        if h.distance(0, q[0], q[1]).min(h.distance(1, q[0], q[1])) <= d {
+                            win.push(q[0], q[1], q[2]);
+                        }
+                    }
+                    let mut kept = Moments::default();
+                    for i in 0..win.len {
+                        kept.add(win.x[i] / scale, win.y[i] / scale, win.w2[i]);
+                    }
+                    first.minus(&kept)
+                };
+                let mut win = Window::with_capacity(p.window * p.window, scale);
+                if let Some(mut c) = evaluate(&mut win, &first, gather, r as f64, &p) {
                     c.x += x as f64;
                     c.y += y as f64;
                     want.push(c);
@@ -657,7 +747,20 @@ mod tests {
             }
         }
         assert!(want.len() >= 4, "{} candidates", want.len());
-        assert_eq!(got, want);
+        // Tiles change the order of the candidates, and the moment tables their last digits.
+        assert_eq!(got.len(), want.len());
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-7;
+        for k in &want {
+            let g = got
+                .iter()
+                .find(|g| close(g.x, k.x) && close(g.y, k.y))
+                .unwrap_or_else(|| panic!("no candidate at ({}, {})", k.x, k.y));
+            assert!(
+                close(g.delta, k.delta) && close(g.psi, k.psi) && close(g.epsilon, k.epsilon),
+                "{g:?} vs {k:?}"
+            );
+            assert_eq!(g.lambda, k.lambda, "{g:?} vs {k:?}");
+        }
     }
 
     #[test]

@@ -123,6 +123,14 @@ impl Moments {
         m[14] += wy3 * y;
         self.n += 1;
     }
+
+    /// The moments of these points without `other`'s (a subset of them).
+    pub fn minus(&self, other: &Moments) -> Moments {
+        Moments {
+            n: self.n.saturating_sub(other.n),
+            m: std::array::from_fn(|k| self.m[k] - other.m[k]),
+        }
+    }
 }
 
 /// The fit of [`fit_hyperbola`] from moments of points scaled by `1/scale`.
@@ -135,6 +143,25 @@ pub fn fit_moments(mo: &Moments, scale: f64) -> Option<Conic> {
         return None;
     }
     let s = 1.0 / scale;
+    let (t, r) = reduced_scatter(mo)?;
+    let a1 = constrained_eigvec_cubic(&r).or_else(|| constrained_eigvec_cholesky(&r))?;
+    let a2: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| t[i][k] * a1[k]).sum());
+    // Back to input units: x_scaled = x / scale.
+    let conic = Conic {
+        a: a1[0] * s * s,
+        b: a1[1] * s * s,
+        c: a1[2] * s * s,
+        d: a2[0] * s,
+        e: a2[1] * s,
+        f: a2[2],
+    };
+    conic.normalised()
+}
+
+type Mat3 = [[f64; 3]; 3];
+
+/// T = −S₃⁻¹S₂ᵗ (α₂ = T α₁) and the reduced scatter R = S₁ + S₂T of the moments.
+fn reduced_scatter(mo: &Moments) -> Option<(Mat3, Mat3)> {
     // Exponents of the monomials [x², xy, y², x, y, 1].
     const EXP: [(usize, usize); 6] = [(2, 0), (1, 1), (0, 2), (1, 0), (0, 1), (0, 0)];
     let at = |i: usize, j: usize| mo.m[moment_index(EXP[i].0 + EXP[j].0, EXP[i].1 + EXP[j].1)];
@@ -155,6 +182,79 @@ pub fn fit_moments(mo: &Moments, scale: f64) -> Option<Conic> {
         r[i][j] = m;
         r[j][i] = m;
     }
+    Some((t, r))
+}
+
+/// α₁ of R α₁ = λ C₁ α₁ for the smallest positive λ, from the characteristic cubic
+/// det(R − λC₁) = 0 in closed form (as Halir and Flusser solve their 3 × 3 reduced problem).
+/// R is positive semi-definite and C₁ has two positive eigenvalues and one negative, so the
+/// cubic has two roots ≥ 0 and one negative (Sylvester's law of inertia): the answer is its
+/// middle root, and α₁ the longest cross product of two rows of R − λC₁. None when the roots
+/// are too close for that (then [`constrained_eigvec_cholesky`] decides).
+///
+/// Departure in form from eq. 2.5's generalised 6 × 6 eigenproblem: the same α, from the
+/// Halir–Flusser reduction and a cubic, which costs a fraction of a symmetric eigensolver.
+fn constrained_eigvec_cubic(r: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+    let (r00, r01, r02, r11, r12, r22) = (r[0][0], r[0][1], r[0][2], r[1][1], r[1][2], r[2][2]);
+    // det(R − λC₁) = 4λ³ + 4(r02 − r11)λ² + (r02² − 4 r11 r02 + 4 r01 r12 − r00 r22)λ + det R,
+    // made monic: λ³ + bλ² + cλ + d.
+    let b = r02 - r11;
+    let c = 0.25 * (r02 * r02 - 4.0 * r11 * r02 + 4.0 * r01 * r12 - r00 * r22);
+    let d = 0.25 * det3(r);
+    let poly = |l: f64| ((l + b) * l + c) * l + d;
+    let slope = |l: f64| (3.0 * l + 2.0 * b) * l + c;
+    // The middle root lies between the cubic's local maximum and minimum, where it falls; from
+    // the inflection point λ = −b/3 Newton's method approaches it monotonically (p is concave
+    // on the left of that point, convex on the right), without trigonometry. Three real roots
+    // need a negative slope there.
+    let mut lambda = -b / 3.0;
+    if !(slope(lambda) < 0.0) {
+        return None;
+    }
+    for _ in 0..60 {
+        let step = poly(lambda) / slope(lambda);
+        if !step.is_finite() {
+            return None;
+        }
+        lambda -= step;
+        if step.abs() <= 1e-15 * (lambda.abs() + b.abs() + 1e-300) {
+            break;
+        }
+    }
+    let rows = [
+        [r00, r01, r02 + 2.0 * lambda],
+        [r01, r11 - lambda, r12],
+        [r02 + 2.0 * lambda, r12, r22],
+    ];
+    let cross = |u: &[f64; 3], v: &[f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let norm2 = |v: &[f64; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let cands = [
+        cross(&rows[0], &rows[1]),
+        cross(&rows[0], &rows[2]),
+        cross(&rows[1], &rows[2]),
+    ];
+    let best = cands
+        .into_iter()
+        .max_by(|u, v| norm2(u).total_cmp(&norm2(v)))?;
+    // A simple root leaves R − λC₁ of rank 2 and a cross product of the size of its squared
+    // entries; a double root (or none) leaves it near zero.
+    let scale = rows.iter().map(norm2).fold(0.0, f64::max);
+    if !(norm2(&best) > 1e-16 * scale * scale) {
+        return None;
+    }
+    Some(best)
+}
+
+/// The same α₁ by the symmetric route: with R = LLᵗ (Cholesky) and u = Lᵗα₁, the eigenvector
+/// of the largest 1/λ of L⁻¹C₁L⁻ᵗ. Slower, but it handles double roots.
+fn constrained_eigvec_cholesky(r: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+    let mut r = *r;
     // A tiny ridge keeps R positive definite when the points lie exactly on a conic (R is
     // then singular and its null vector is the answer, found as 1/λ → ∞).
     let ridge = (r[0][0] + r[1][1] + r[2][2]).abs() * 1e-12 + f64::MIN_POSITIVE;
@@ -173,18 +273,9 @@ pub fn fit_moments(mo: &Moments, scale: f64) -> Option<Conic> {
         return None;
     }
     // α₁ = L⁻ᵗ u.
-    let a1: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| li[k][i] * u[k]).sum());
-    let a2: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| t[i][k] * a1[k]).sum());
-    // Back to input units: x_scaled = x / scale.
-    let conic = Conic {
-        a: a1[0] * s * s,
-        b: a1[1] * s * s,
-        c: a1[2] * s * s,
-        d: a2[0] * s,
-        e: a2[1] * s,
-        f: a2[2],
-    };
-    conic.normalised()
+    Some(std::array::from_fn(|i| {
+        (0..3).map(|k| li[k][i] * u[k]).sum()
+    }))
 }
 
 fn det3(m: &[[f64; 3]; 3]) -> f64 {
@@ -461,6 +552,43 @@ mod tests {
         assert!((det3(&a) - m.determinant()).abs() < 1e-12);
         assert!(inverse3(&[[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]]).is_none());
         assert!(cholesky3(&[[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).is_none());
+    }
+
+    #[test]
+    fn cubic_and_cholesky_routes_give_the_same_fit() {
+        // Reduced scatters of noisy corners at many angles, offsets and weights: both solvers
+        // of R α₁ = λ C₁ α₁ return the same direction.
+        let mut checked = 0;
+        for k in 0..200 {
+            let t1 = k as f64 * 0.37;
+            let t2 = t1 + 0.5 + (k % 7) as f64 * 0.3;
+            let c = [
+                ((k * 13) % 7) as f64 * 0.3 - 1.0,
+                ((k * 5) % 9) as f64 * 0.2 - 0.8,
+            ];
+            let mut pts = line_pair_points(c, t1, t2, 6);
+            for (i, p) in pts.iter_mut().enumerate() {
+                p[0] += 0.05 * ((i * 7 + k) as f64).sin();
+                p[1] += 0.05 * ((i * 3 + k) as f64).cos();
+                p[2] = 1.0 + (i % 4) as f64;
+            }
+            let mut mo = Moments::default();
+            for p in &pts {
+                mo.add(p[0] / 6.0, p[1] / 6.0, p[2] * p[2]);
+            }
+            let r = reduced_scatter(&mo).unwrap().1;
+            let (Some(u), Some(v)) = (
+                constrained_eigvec_cubic(&r),
+                constrained_eigvec_cholesky(&r),
+            ) else {
+                continue;
+            };
+            let n = |a: &[f64; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            let cos = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (n(&u) * n(&v));
+            assert!(cos.abs() > 1.0 - 1e-9, "case {k}: |cos| = {}", cos.abs());
+            checked += 1;
+        }
+        assert!(checked > 190, "{checked} cases solved by both");
     }
 
     #[test]

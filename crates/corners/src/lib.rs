@@ -45,6 +45,7 @@ pub mod draw;
 pub mod edge;
 pub mod fit;
 pub mod repeat;
+mod sat;
 
 pub use detect::{Corner, Corners, Params, detect};
 pub use edge::Gray;
