@@ -235,8 +235,8 @@ mod tests {
             about_d.add(p[0] - dx, p[1] - dy, p[2]);
         }
         let got = shifted(&about0.m, dx, dy);
-        for k in 0..15 {
-            assert!((got[k] - about_d.m[k]).abs() < 1e-12, "{k}");
+        for (k, (g, d)) in got.iter().zip(&about_d.m).enumerate() {
+            assert!((g - d).abs() < 1e-12, "{k}");
         }
     }
 }
