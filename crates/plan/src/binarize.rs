@@ -20,6 +20,8 @@ pub struct PreStats {
     pub dropped_outside: usize,
     /// Wall pixels left.
     pub wall_pixels: usize,
+    /// Ink regions without a room of their own dropped as marks (letters, arrows; [`drop_marks`]).
+    pub dropped_marks: usize,
 }
 
 /// Otsu's threshold on the grey image. Departure from §5.1.2 ("a simple threshold"): scans vary,
@@ -235,6 +237,68 @@ pub fn close_gaps(img: &mut GrayImage, radius: u8) -> usize {
     added
 }
 
+/// Drops marks drawn among the walls: every 8-connected ink region other than the largest
+/// that encloses no open space of its own (letters, numbers, signatures, north arrows, loose
+/// hachures, scale-bar pieces within the castle's extent). Addition to §5.1.2, which left
+/// them to the user's clean-up (§5.1.1): an isolated region without a hole splits no face, so
+/// dropping it changes no room, but kept, its skeleton bounds the surroundings and passes the
+/// tower test (the engraver's signature became a tower on the Bonaguil plan). Free-standing
+/// buildings keep their rooms and so stay. Returns the regions dropped.
+pub fn drop_marks(img: &mut GrayImage) -> usize {
+    let black = components(img, 255, Connectivity::Eight);
+    let white = components(img, 0, Connectivity::Four);
+    let Some((largest, _)) = black.sizes.iter().enumerate().skip(1).max_by_key(|&(_, s)| *s)
+    else {
+        return 0;
+    };
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    // The ink regions around each open region; an open region off the image border with a
+    // single ink region around it is that region's hole.
+    let mut around: Vec<Option<u32>> = vec![None; white.sizes.len()];
+    let mut shared = vec![false; white.sizes.len()];
+    for y in 0..h {
+        for x in 0..w {
+            let wl = white.labels[y * w + x] as usize;
+            if wl == 0 {
+                continue;
+            }
+            if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+                shared[wl] = true;
+            }
+            for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
+                let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                    continue;
+                }
+                let b = black.labels[ny as usize * w + nx as usize];
+                if b == 0 {
+                    continue;
+                }
+                match around[wl] {
+                    None => around[wl] = Some(b),
+                    Some(o) if o != b => shared[wl] = true,
+                    _ => {}
+                }
+            }
+        }
+    }
+    let mut has_hole = vec![false; black.sizes.len()];
+    for (wl, a) in around.iter().enumerate().skip(1) {
+        if let (Some(b), false) = (a, shared[wl]) {
+            has_hole[*b as usize] = true;
+        }
+    }
+    let drop: Vec<bool> = (0..black.sizes.len())
+        .map(|b| b > 0 && b != largest && !has_hole[b])
+        .collect();
+    for (p, &l) in img.pixels_mut().zip(&black.labels) {
+        if drop[l as usize] {
+            p[0] = 0;
+        }
+    }
+    drop.iter().filter(|&&d| d).count()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -293,6 +357,29 @@ mod tests {
         assert_eq!(img.get_pixel(12, 5)[0], 255);
         assert_eq!(img.get_pixel(29, 5)[0], 0);
         assert!(added >= 4 * 6);
+    }
+
+    #[test]
+    fn letters_and_arrows_go_the_castle_and_a_free_standing_tower_stay() {
+        // The castle (a ring), a free-standing ring tower, a solid "letter" and an "arrow".
+        let rows = [
+            "....................",
+            ".#######.......###..",
+            ".#.....#.......#.#..",
+            ".#.....#.......###..",
+            ".#.....#............",
+            ".#######....#.......",
+            "...........###......",
+            "..##........#.......",
+            "..##........#.......",
+            "....................",
+        ];
+        let mut img = binarize(&grey_from(&rows), 128);
+        assert_eq!(drop_marks(&mut img), 2);
+        assert_eq!(img.get_pixel(1, 1)[0], 255);
+        assert_eq!(img.get_pixel(16, 1)[0], 255);
+        assert_eq!(img.get_pixel(2, 7)[0], 0);
+        assert_eq!(img.get_pixel(12, 6)[0], 0);
     }
 
     #[test]

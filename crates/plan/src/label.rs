@@ -106,6 +106,11 @@ pub struct Scene<'a> {
     pub edge_faces: &'a [Vec<usize>],
     /// Wall thickness at each edge, pixels.
     pub thickness: &'a [f64],
+    /// Also test walls inside the enceinte as towers of an inner ward ((4') in [`heuristics`]).
+    pub inner_ward_towers: bool,
+    /// Faces on the outer wall at least this fraction of the courtyard's area are further
+    /// wards ((5') in [`heuristics`]); 0 keeps one courtyard as §5.1.6 does.
+    pub ward_ratio: f64,
 }
 
 /// Labels of faces and edges, and what the heuristics could not find.
@@ -166,8 +171,26 @@ pub fn heuristics(s: &Scene) -> Labelling {
     // (4) tower walls: outer walls bulging out of the castle (convexity test).
     let extent = castle_extent(s.walls);
     for (e, l) in el.iter_mut().enumerate() {
-        if *l == Some(Label::CastleOuterWall) && is_tower(s, e, &fl, extent) {
+        if *l == Some(Label::CastleOuterWall)
+            && is_tower(s, e, &fl, extent, Label::CastleSurroundings, 0.25)
+        {
             *l = Some(Label::TowerWall);
+        }
+    }
+    // (4') towers of an inner ward (issue 11, several enclosures): walls inside the enceinte
+    // that bulge out into the courtyard around a small room. Departure from §5.1.6 (4), which
+    // tests only the walls bounding the surroundings, so an inner ward's towers (Château-
+    // Gaillard, Bonaguil) were never towers. Measured on the development set (docs/plan.md).
+    if s.inner_ward_towers {
+        for e in 0..ne {
+            if el[e].is_none()
+                && is_tower(s, e, &fl, extent, Label::Courtyard, INNER_BULGE)
+                && s.edge_faces[e]
+                    .iter()
+                    .any(|&f| fl[f].is_none() && is_small_room(s, f, &fl))
+            {
+                el[e] = Some(Label::TowerWall);
+            }
         }
     }
     // (5) tower rooms.
@@ -177,6 +200,25 @@ pub fn heuristics(s: &Scene) -> Labelling {
                 if fl[f].is_none() {
                     fl[f] = Some(Label::TowerRoom);
                 }
+            }
+        }
+    }
+    // (5') further wards (issue 11, several enclosures): an unlabelled face on the outer wall
+    // at least WARD_RATIO of the courtyard's area is a courtyard too. Departure from §5.1.6
+    // (3), which takes one courtyard (after the tower rooms, so no tower room is taken for one), so a second ward became the great hall or the chapel.
+    if s.ward_ratio > 0.0
+        && let Some(c) = (0..nf).find(|&f| fl[f] == Some(Label::Courtyard))
+    {
+        let court = s.faces[c].area as f64;
+        for f in 0..nf {
+            let on_outer = || {
+                s.edge_faces
+                    .iter()
+                    .enumerate()
+                    .any(|(e, fs)| fs.contains(&f) && el[e] == Some(Label::CastleOuterWall))
+            };
+            if fl[f].is_none() && s.faces[f].area as f64 >= s.ward_ratio * court && on_outer() {
+                fl[f] = Some(Label::Courtyard);
             }
         }
     }
@@ -235,7 +277,14 @@ fn castle_extent(walls: &Mask) -> f64 {
 /// towards the exterior: just beyond its farthest point lies the castle surroundings. Towers
 /// are small against the castle: a chord longer than 45 % of its extent is a curtain wall
 /// turning a corner, not a tower.
-fn is_tower(s: &Scene, e: usize, fl: &[Option<Label>], extent: f64) -> bool {
+fn is_tower(
+    s: &Scene,
+    e: usize,
+    fl: &[Option<Label>],
+    extent: f64,
+    outside: Label,
+    bulge: f64,
+) -> bool {
     let edge = &s.graph.edges[e];
     let a = &s.graph.vertices[edge.from];
     let b = &s.graph.vertices[edge.to];
@@ -258,7 +307,7 @@ fn is_tower(s: &Scene, e: usize, fl: &[Option<Label>], extent: f64) -> bool {
     }
     let (dev, p, foot) = best;
     let t = s.thickness[e];
-    if dev < (0.25 * len).max(1.5 * t).max(3.0) || len > 0.45 * extent || dev > 0.45 * extent {
+    if dev < (bulge * len).max(1.5 * t).max(3.0) || len > 0.45 * extent || dev > 0.45 * extent {
         return false;
     }
     let (nx, ny) = ((p.0 - foot.0) / dev, (p.1 - foot.1) / dev);
@@ -278,10 +327,33 @@ fn is_tower(s: &Scene, e: usize, fl: &[Option<Label>], extent: f64) -> bool {
             continue;
         }
         let f = s.face_of[i] as usize;
-        return f < fl.len() && fl[f] == Some(Label::CastleSurroundings);
+        return f < fl.len() && fl[f] == Some(outside);
     }
     false
 }
+
+/// A face small enough to be a tower room against the courtyard (under an eighth of its area)
+/// and compact enough.
+fn is_small_room(s: &Scene, f: usize, fl: &[Option<Label>]) -> bool {
+    let court = (0..fl.len())
+        .filter(|&c| fl[c] == Some(Label::Courtyard))
+        .map(|c| s.faces[c].area)
+        .max()
+        .unwrap_or(0);
+    let info = &s.faces[f];
+    // Round or square: a disc's area is π r², a square's 4 r², for the inset r; stair flights
+    // and passages cut by hatching are long and narrow (Saint-Médard's stair P).
+    let compact = info.area as f64 <= ROUND_ROOM * info.max_inset.max(1.0).powi(2);
+    info.area > 0 && 8 * info.area < court && compact && info.max_inset >= 3.0
+}
+
+/// An inner ward's tower must bulge this fraction of its chord into the courtyard (an outer
+/// tower 0.25): walls inside the enceinte bend round stairs and halls more often than the
+/// curtain does.
+const INNER_BULGE: f64 = 0.4;
+
+/// Area over inset squared below which a face is round or square enough to be a tower room.
+const ROUND_ROOM: f64 = 5.0;
 
 /// Label of every pixel (§5.1.6): open pixels take their face's label; wall pixels take the
 /// label of the nearest remaining wall edge, reached through the wall (breadth-first from the

@@ -42,5 +42,5 @@ fn development_set_accuracy_does_not_fall() {
 
 /// Measured on the set (docs/plan.md, "Development set"), less a small margin for
 /// platform differences in resizing.
-const FLOOR_POINTS_RIGHT: usize = 110;
+const FLOOR_POINTS_RIGHT: usize = 115;
 const FLOOR_TOWERS_EXACT: usize = 3;
