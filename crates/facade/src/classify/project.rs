@@ -199,7 +199,7 @@ mod tests {
             Rgb([
                 (x * 19 + y * 7) as u8,
                 (x * x + 3 * y) as u8,
-                (x ^ y) as u8 * 20,
+                ((x ^ y) * 20) as u8,
             ])
         });
         // Six components: one full group of five and a group of one.
