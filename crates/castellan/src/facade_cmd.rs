@@ -142,3 +142,108 @@ mod flag_tests {
         assert_eq!(a.seed, 9);
     }
 }
+
+/// Issue 4's bad inputs through the whole command: a clear error naming the file, nothing written.
+#[cfg(test)]
+mod bad_input_tests {
+    use super::{FacadeArgs, run};
+    use image::{Rgb, RgbImage};
+
+    /// Runs the command on `img` with TRAINING.json text `training`; returns the error text and
+    /// whether FACADE.json was written.
+    fn fails_with(img: &RgbImage, training: &str) -> (String, bool) {
+        let dir = tempfile::tempdir().unwrap();
+        let (image, tfile) = (dir.path().join("f.png"), dir.path().join("t.json"));
+        img.save(&image).unwrap();
+        std::fs::write(&tfile, training).unwrap();
+        let output = dir.path().join("f.json");
+        let args = FacadeArgs {
+            image,
+            training: tfile,
+            output: output.clone(),
+            labels: Some(dir.path().join("l.png")),
+            overlay: None,
+            seed: 7,
+        };
+        let err = run(&args).expect_err("bad input must fail");
+        (
+            format!("{err:#}"),
+            output.exists() || dir.path().join("l.png").exists(),
+        )
+    }
+
+    fn two_tone() -> RgbImage {
+        RgbImage::from_fn(60, 40, |x, _| {
+            if x < 30 {
+                Rgb([200, 150, 100])
+            } else {
+                Rgb([30, 40, 60])
+            }
+        })
+    }
+
+    #[test]
+    fn empty_box_is_refused() {
+        let (err, wrote) = fails_with(
+            &two_tone(),
+            r#"{"classes": {"window": [[40, 10, 40, 30]], "wall": [[2, 2, 20, 20]]}}"#,
+        );
+        assert!(
+            err.contains("t.json") && err.contains("no pixels inside"),
+            "{err}"
+        );
+        assert!(!wrote);
+    }
+
+    #[test]
+    fn one_class_only_is_refused() {
+        let (err, wrote) = fails_with(
+            &two_tone(),
+            r#"{"classes": {"window": [[40, 10, 50, 30]]}}"#,
+        );
+        assert!(
+            err.contains("t.json") && err.contains("no wall boxes"),
+            "{err}"
+        );
+        assert!(!wrote);
+        let (err, _) = fails_with(&two_tone(), r#"{"classes": {}}"#);
+        assert!(err.contains("no window boxes"), "{err}");
+    }
+
+    #[test]
+    fn boxes_outside_the_image_are_refused() {
+        let (err, wrote) = fails_with(
+            &two_tone(),
+            r#"{"classes": {"window": [[-50, -50, -10, -10]], "wall": [[2, 2, 20, 20]]}}"#,
+        );
+        assert!(
+            err.contains("t.json") && err.contains("no pixels inside the 60x40"),
+            "{err}"
+        );
+        assert!(!wrote);
+    }
+
+    #[test]
+    fn single_colour_image_is_refused() {
+        let flat = RgbImage::from_pixel(60, 40, Rgb([90, 90, 90]));
+        let (err, wrote) = fails_with(
+            &flat,
+            r#"{"classes": {"window": [[40, 10, 50, 30]], "wall": [[2, 2, 20, 20]]}}"#,
+        );
+        assert!(
+            err.contains("f.png") && err.contains("single colour"),
+            "{err}"
+        );
+        assert!(!wrote);
+    }
+
+    #[test]
+    fn malformed_training_is_refused() {
+        let (err, wrote) = fails_with(&two_tone(), r#"{"classes": {"window": [[1, 2, 3]]}}"#);
+        assert!(
+            err.contains("t.json") && err.contains("not a TRAINING.json"),
+            "{err}"
+        );
+        assert!(!wrote);
+    }
+}

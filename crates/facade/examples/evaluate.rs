@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use facade::classify::{Class, ClassifyParams, classify};
-use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user};
+use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside};
 use facade::search::{SearchParams, parse};
 
 fn data() -> PathBuf {
@@ -59,13 +59,18 @@ fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
     )
 }
 
-/// Overrides for experiments: FACADE_BOX (box side, default 9), FACADE_RIDGE_REL, FACADE_PCS
+/// Overrides for experiments: FACADE_BOX (box side, default 9), FACADE_MARGIN (clearance of the
+/// boxes from their class's border, default 0), FACADE_RIDGE_REL, FACADE_PCS
 /// (principal components per channel).
 fn box_side() -> usize {
-    std::env::var("FACADE_BOX")
+    env_usize("FACADE_BOX", 9)
+}
+
+fn env_usize(name: &str, default: usize) -> usize {
+    std::env::var(name)
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(9)
+        .unwrap_or(default)
 }
 
 fn classify_params() -> ClassifyParams {
@@ -104,7 +109,15 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             eprintln!("{}: label size mismatch, skipped", img_path.display());
             continue;
         }
-        let Ok(training) = simulate_user(&truth, w, h, 3, box_side(), 1) else {
+        let Ok(training) = simulate_user_inside(
+            &truth,
+            w,
+            h,
+            3,
+            box_side(),
+            env_usize("FACADE_MARGIN", 0),
+            1,
+        ) else {
             continue;
         };
         let t = Instant::now();

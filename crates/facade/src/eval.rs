@@ -49,6 +49,21 @@ pub fn simulate_user(
     side: usize,
     seed: u64,
 ) -> Result<Training> {
+    simulate_user_inside(truth, w, h, per_class, side, 0, seed)
+}
+
+/// [`simulate_user`], but a user who keeps each box `margin` pixels clear of the class's
+/// border, as one marks the middle of a window rather than its frame. Where no position has
+/// that margin the margin is halved (down to 0), so small regions still get boxes.
+pub fn simulate_user_inside(
+    truth: &[u8],
+    w: usize,
+    h: usize,
+    per_class: usize,
+    side: usize,
+    margin: usize,
+    seed: u64,
+) -> Result<Training> {
     if truth.len() != w * h || w < side || h < side || side == 0 {
         return Err(FacadeError::BadTraining(
             "ground truth too small for the boxes".into(),
@@ -62,19 +77,30 @@ pub fn simulate_user(
             .map(|&l| (l == class as u8) as u8 as f64)
             .collect();
         let integral = Integral::new(&mask, w, h);
-        let full = (side * side) as f64;
         let mut cands: Vec<(f64, f64)> = Vec::new();
-        for _ in 0..5000 {
-            if cands.len() >= 300 {
+        let mut m = margin;
+        loop {
+            let outer = side + 2 * m;
+            if w >= outer && h >= outer {
+                let full = (outer * outer) as f64;
+                for _ in 0..5000 {
+                    if cands.len() >= 300 {
+                        break;
+                    }
+                    let (x, y) = (
+                        rng.random_range(0..=w - outer),
+                        rng.random_range(0..=h - outer),
+                    );
+                    if integral.sum(x, y, x + outer, y + outer) == full {
+                        cands.push(((x + m) as f64, (y + m) as f64));
+                    }
+                }
+            }
+            if cands.len() >= per_class || m == 0 {
                 break;
             }
-            let (x, y) = (
-                rng.random_range(0..=w - side),
-                rng.random_range(0..=h - side),
-            );
-            if integral.sum(x, y, x + side, y + side) == full {
-                cands.push((x as f64, y as f64));
-            }
+            cands.clear();
+            m /= 2;
         }
         let mut chosen: Vec<(f64, f64)> = Vec::new();
         while chosen.len() < per_class.min(cands.len()) {
@@ -129,5 +155,27 @@ mod tests {
             assert!(b[0] >= 10.0 && b[2] <= 20.0);
         }
         assert_eq!(t.classes["wall"].len(), 3);
+    }
+
+    #[test]
+    fn boxes_keep_their_margin_where_they_can() {
+        // Window class: columns 10..30 of a 40 x 20 image; a 4-px box with a 5-px margin must
+        // start at x in 15..=21; the wall (columns 0..10 and 30..40) is too thin for that
+        // margin and gets boxes with a smaller one.
+        let (w, h) = (40, 20);
+        let truth: Vec<u8> = (0..w * h)
+            .map(|i| if (10..30).contains(&(i % w)) { 2 } else { 1 })
+            .collect();
+        let t = simulate_user_inside(&truth, w, h, 3, 4, 5, 1).unwrap();
+        for b in &t.classes["window"] {
+            assert!(
+                b[0] >= 15.0 && b[2] <= 25.0 && b[1] >= 5.0 && b[3] <= 15.0,
+                "{b:?}"
+            );
+        }
+        assert_eq!(t.classes["wall"].len(), 3);
+        for b in &t.classes["wall"] {
+            assert!(b[2] <= 10.0 || b[0] >= 30.0, "{b:?}");
+        }
     }
 }

@@ -112,3 +112,18 @@ fn odd_images_give_results_or_errors_never_panics() {
         }
     }
 }
+
+#[test]
+fn image_with_one_line_family_is_a_clear_error() {
+    // Horizontal courses only: no vertical family to find a second vanishing point from.
+    let img = image::RgbImage::from_fn(200, 150, |_, y| {
+        if (y / 10) % 2 == 0 {
+            image::Rgb([200, 190, 170])
+        } else {
+            image::Rgb([60, 50, 40])
+        }
+    });
+    let e = rectify(&img, &RectifyParams::default()).unwrap_err();
+    let text = e.to_string();
+    assert!(text.contains("vertical"), "{text}");
+}

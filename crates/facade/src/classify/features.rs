@@ -122,7 +122,7 @@ fn pca(
         let mut wv = vec![vec![0f32; d]; k];
         for row in x.chunks(d) {
             for (j, vj) in v.iter().enumerate() {
-                let y: f32 = row.iter().zip(vj).map(|(a, b)| a * b).sum();
+                let y = dot(row, vj);
                 wv[j].iter_mut().zip(row).for_each(|(o, r)| *o += y * r);
             }
         }
@@ -198,51 +198,31 @@ pub fn compute(img: &RgbImage, p: &FeatureParams) -> Features {
         .iter()
         .map(|pl| pca(pl, w, h, &p, &mut rng))
         .collect();
-    // Texture coefficients on the coarse grid.
+    // Texture coefficients on the coarse grid (its last points may lie past the border).
     let s = p.stride.max(1);
     let (gw, gh) = ((w - 1) / s + 2, (h - 1) / s + 2);
-    let mut grid = vec![0f32; gw * gh * 3 * k];
-    // (I − m)·v = I·v − m·v: the mean's projections once per component.
-    let mean_proj: Vec<Vec<f32>> = bases
-        .iter()
-        .map(|(vecs, mean)| vecs.iter().map(|v| dot(v, mean)).collect())
-        .collect();
-    grid.par_chunks_mut((gw * 3 * k).max(1))
-        .enumerate()
-        .for_each(|(gy, row)| {
-            let y = (gy * s).min(h - 1);
-            let mut patch = vec![0f32; l * l];
-            for gx in 0..gw {
-                let x = (gx * s).min(w - 1);
-                for (c, (plane, (vecs, _))) in planes.iter().zip(&bases).enumerate() {
-                    for dy in 0..l {
-                        patch[dy * l..dy * l + l].copy_from_slice(plane.row(x, y, dy, l));
-                    }
-                    for (j, v) in vecs.iter().enumerate() {
-                        row[gx * 3 * k + c * k + j] = dot(&patch, v) - mean_proj[c][j];
-                    }
-                }
-            }
-        });
+    let grid = super::project::project_grid(img, &bases, l, s, gw, gh);
     let mut data = vec![0f32; w * h * dim];
+    let kk = 3 * k;
+    let raw = img.as_raw();
     data.par_chunks_mut(w * dim)
         .enumerate()
         .for_each(|(y, row)| {
-            let gy = y / s;
-            let fy = (y % s) as f32 / s as f32;
-            for x in 0..w {
-                let px = img.get_pixel(x as u32, y as u32);
-                let out = &mut row[x * dim..(x + 1) * dim];
-                for c in 0..3 {
-                    out[c] = px[c] as f32 / 255.0;
+            // Bilinear: first between grid rows gy and gy + 1 for the whole row, then along x.
+            let (gy, fy) = (y / s, (y % s) as f32 / s as f32);
+            let top = &grid[gy * gw * kk..(gy + 1) * gw * kk];
+            let bot = &grid[(gy + 1) * gw * kk..(gy + 2) * gw * kk];
+            let mid: Vec<f32> = top.iter().zip(bot).map(|(t, b)| t + (b - t) * fy).collect();
+            for (x, out) in row.chunks_exact_mut(dim).enumerate() {
+                let rgb = &raw[(y * w + x) * 3..(y * w + x) * 3 + 3];
+                for (o, v) in out.iter_mut().zip(rgb) {
+                    *o = *v as f32 / 255.0;
                 }
-                let gx = x / s;
-                let fx = (x % s) as f32 / s as f32;
-                let g = |xx: usize, yy: usize, i: usize| grid[(yy * gw + xx) * 3 * k + i];
-                for i in 0..3 * k {
-                    let top = g(gx, gy, i) * (1.0 - fx) + g(gx + 1, gy, i) * fx;
-                    let bot = g(gx, gy + 1, i) * (1.0 - fx) + g(gx + 1, gy + 1, i) * fx;
-                    out[3 + i] = top * (1.0 - fy) + bot * fy;
+                let (gx, fx) = (x / s, (x % s) as f32 / s as f32);
+                let left = &mid[gx * kk..(gx + 1) * kk];
+                let right = &mid[(gx + 1) * kk..(gx + 2) * kk];
+                for ((o, l), r) in out[3..].iter_mut().zip(left).zip(right) {
+                    *o = l + (r - l) * fx;
                 }
             }
         });

@@ -4,6 +4,8 @@
 
 pub mod features;
 pub mod gmm;
+pub mod project;
+mod simd;
 
 use std::collections::BTreeMap;
 
@@ -14,7 +16,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 pub use features::{FeatureParams, Features};
-pub use gmm::{Gaussian, Gmm};
+pub use gmm::{BLOCK, Gaussian, Gmm};
 
 use crate::error::{FacadeError, Result};
 
@@ -194,14 +196,44 @@ impl Classifier {
         Ok(Classifier { mixtures })
     }
 
-    /// ln P_kj for every pixel and trained class (§3.1.4).
+    /// ln P_kj for every pixel and trained class (§3.1.4), BLOCK pixels at a time per row.
     pub fn log_likelihoods(&self, f: &Features) -> LogLikelihoods {
+        let (w, n) = (f.width, f.width * f.height);
+        let mixtures: Vec<(Class, &Gmm)> = self.mixtures.iter().map(|(c, g)| (*c, g)).collect();
+        let nc = mixtures.len();
+        let fma = gmm::fma_available();
+        // Row y holds class 0's row, then class 1's, ...
+        let mut rows = vec![0f32; n * nc];
+        if w > 0 {
+            rows.par_chunks_mut(w * nc)
+                .zip(f.data.par_chunks(w * f.dim))
+                .for_each(|(out, feats)| {
+                    let mut x = vec![[0f32; BLOCK]; f.dim];
+                    let mut diff = x.clone();
+                    for x0 in (0..w).step_by(BLOCK) {
+                        // Feature-major block; a short last block repeats its last pixel.
+                        for lane in 0..BLOCK {
+                            let px = (x0 + lane).min(w - 1);
+                            for (i, xi) in x.iter_mut().enumerate() {
+                                xi[lane] = feats[px * f.dim + i];
+                            }
+                        }
+                        for (ci, (_, gmm)) in mixtures.iter().enumerate() {
+                            let lp = gmm.log_pdf_block(fma, &x, &mut diff);
+                            let take = BLOCK.min(w - x0);
+                            for (o, v) in out[ci * w + x0..ci * w + x0 + take].iter_mut().zip(lp) {
+                                *o = v.max(-1e30);
+                            }
+                        }
+                    }
+                });
+        }
         let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
-        for (class, gmm) in &self.mixtures {
-            let m: Vec<f32> = f
-                .data
-                .par_chunks(f.dim)
-                .map(|x| gmm.log_pdf(x).max(-1e30) as f32)
+        for (ci, (class, _)) in mixtures.iter().enumerate() {
+            let m: Vec<f32> = rows
+                .chunks((w * nc).max(1))
+                .flat_map(|r| &r[ci * w..(ci + 1) * w])
+                .copied()
                 .collect();
             maps[*class as usize] = Some(m);
         }
