@@ -37,7 +37,9 @@ fn main() {
         if let (Some(dir), Some(pp)) = (arg_value("--overlays"), parsed.as_ref()) {
             let name = p.file.rsplit('/').next().unwrap_or(&p.file);
             let out = std::path::Path::new(&dir).join(format!("{name}.overlay.png"));
-            plan::output::overlay(pp, &img.to_luma8()).save(out).unwrap();
+            plan::output::overlay(pp, &img.to_luma8())
+                .save(out)
+                .unwrap();
         }
         scores.push(score(parsed.as_ref(), p, set.tolerance_px));
     }

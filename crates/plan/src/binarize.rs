@@ -247,7 +247,12 @@ pub fn close_gaps(img: &mut GrayImage, radius: u8) -> usize {
 pub fn drop_marks(img: &mut GrayImage) -> usize {
     let black = components(img, 255, Connectivity::Eight);
     let white = components(img, 0, Connectivity::Four);
-    let Some((largest, _)) = black.sizes.iter().enumerate().skip(1).max_by_key(|&(_, s)| *s)
+    let Some((largest, _)) = black
+        .sizes
+        .iter()
+        .enumerate()
+        .skip(1)
+        .max_by_key(|&(_, s)| *s)
     else {
         return 0;
     };

@@ -182,14 +182,14 @@ pub fn heuristics(s: &Scene) -> Labelling {
     // tests only the walls bounding the surroundings, so an inner ward's towers (Château-
     // Gaillard, Bonaguil) were never towers. Measured on the development set (docs/plan.md).
     if s.inner_ward_towers {
-        for e in 0..ne {
-            if el[e].is_none()
+        for (e, label) in el.iter_mut().enumerate().take(ne) {
+            if label.is_none()
                 && is_tower(s, e, &fl, extent, Label::Courtyard, INNER_BULGE)
                 && s.edge_faces[e]
                     .iter()
                     .any(|&f| fl[f].is_none() && is_small_room(s, f, &fl))
             {
-                el[e] = Some(Label::TowerWall);
+                *label = Some(Label::TowerWall);
             }
         }
     }
@@ -205,20 +205,21 @@ pub fn heuristics(s: &Scene) -> Labelling {
     }
     // (5') further wards (issue 11, several enclosures): an unlabelled face on the outer wall
     // at least WARD_RATIO of the courtyard's area is a courtyard too. Departure from §5.1.6
-    // (3), which takes one courtyard (after the tower rooms, so no tower room is taken for one), so a second ward became the great hall or the chapel.
+    // (3), which takes one courtyard, so a second ward became the great hall or the chapel; run
+    // after the tower rooms so that no tower room is taken for a ward.
     if s.ward_ratio > 0.0
         && let Some(c) = (0..nf).find(|&f| fl[f] == Some(Label::Courtyard))
     {
         let court = s.faces[c].area as f64;
-        for f in 0..nf {
+        for (f, label) in fl.iter_mut().enumerate().take(nf) {
             let on_outer = || {
                 s.edge_faces
                     .iter()
                     .enumerate()
                     .any(|(e, fs)| fs.contains(&f) && el[e] == Some(Label::CastleOuterWall))
             };
-            if fl[f].is_none() && s.faces[f].area as f64 >= s.ward_ratio * court && on_outer() {
-                fl[f] = Some(Label::Courtyard);
+            if label.is_none() && s.faces[f].area as f64 >= s.ward_ratio * court && on_outer() {
+                *label = Some(Label::Courtyard);
             }
         }
     }

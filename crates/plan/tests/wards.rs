@@ -12,9 +12,8 @@ use plan::label::Label;
 /// a "north arrow" cross in the east ward.
 fn two_wards() -> GrayImage {
     GrayImage::from_fn(400, 300, |x, y| {
-        let in_box = |x0: u32, x1: u32, y0: u32, y1: u32| {
-            (x0..=x1).contains(&x) && (y0..=y1).contains(&y)
-        };
+        let in_box =
+            |x0: u32, x1: u32, y0: u32, y1: u32| (x0..=x1).contains(&x) && (y0..=y1).contains(&y);
         let enceinte = in_box(20, 380, 20, 280) && !in_box(28, 372, 28, 272);
         let cross = in_box(226, 234, 20, 280);
         let d = (f64::from(x) - 204.0).hypot(f64::from(y) - 150.0);
