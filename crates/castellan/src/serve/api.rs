@@ -117,6 +117,20 @@ pub(super) fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEn
     })
 }
 
+/// What an edit of one façade checks against: the project, a copy of the façade's entry and
+/// its photo's size.
+pub(super) fn facade_for_edit(
+    store: &Store,
+    name: &str,
+) -> Result<(Project, FacadeEntry, (u32, u32)), ApiError> {
+    let p = store.require().map_err(err(StatusCode::CONFLICT))?;
+    let f = find_facade(&p, name)?.clone();
+    let path = store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
+    let size = image::image_dimensions(&path)
+        .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+    Ok((p, f, size))
+}
+
 /// GET /api/project
 pub async fn project(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "project", |app| {

@@ -10,7 +10,7 @@ use axum::http::StatusCode;
 use facade::rectify::{ManualLines, RectifyParams, Segment, rectify_with_lines};
 use serde_json::{Value, json};
 
-use super::api::{ApiError, App, Reply, blocking, err, file_url, find_facade};
+use super::api::{ApiError, App, Reply, blocking, err, facade_for_edit, file_url, find_facade};
 use crate::reconstruct_cmd::stem;
 
 /// Most segments per family one LINES.json may hold.
@@ -50,14 +50,7 @@ pub async fn save(
     Json(lines): Json<ManualLines>,
 ) -> Reply {
     blocking(app, "lines", move |app| {
-        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
-        let path = app
-            .store
-            .path(&f.image)
-            .map_err(err(StatusCode::CONFLICT))?;
-        let (w, h) = image::image_dimensions(&path)
-            .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+        let (mut p, f, (w, h)) = facade_for_edit(&app.store, &name)?;
         check(&lines, w, h)
             .map_err(|m| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {m}")))?;
         let file = f

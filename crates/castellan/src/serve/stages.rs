@@ -13,7 +13,7 @@ use facade::rectify::ManualLines;
 use integrate::project::{Correspondence, FacadeEntry, TrainingSource};
 use serde_json::{Value, json};
 
-use super::api::{ApiError, App, Reply, blocking, err, file_url, find_facade};
+use super::api::{ApiError, App, Reply, blocking, err, facade_for_edit, file_url, find_facade};
 use crate::images::{png, read_image};
 use crate::reconstruct_cmd::stem;
 
@@ -127,14 +127,7 @@ pub async fn training(
     Json(training): Json<Training>,
 ) -> Reply {
     blocking(app, "training", move |app| {
-        let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
-        let path = app
-            .store
-            .path(&f.image)
-            .map_err(err(StatusCode::CONFLICT))?;
-        let (w, h) = image::image_dimensions(&path)
-            .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+        let (mut p, f, (w, h)) = facade_for_edit(&app.store, &name)?;
         // An empty set is a valid state to save (the user clears the boxes); otherwise check.
         if training.classes.values().any(|b| !b.is_empty()) {
             training
