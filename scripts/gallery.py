@@ -238,6 +238,26 @@ def write_project(folder, plan, plan_scale, facade=None):
     (folder / "PROJECT.toml").write_text("\n".join(lines) + "\n")
 
 
+def project_with_plan(tmp, stem, plan_src):
+    """A fresh project folder for `stem` holding a copy of the plan; returns it and the plan's name."""
+    proj = tmp / f"{stem}-project"
+    proj.mkdir()
+    plan = "plan" + plan_src.suffix
+    shutil.copy(plan_src, proj / plan)
+    return proj, plan
+
+
+def reconstruct(proj, dst, row):
+    """`castellan reconstruct` on the project; the rendered model goes to dst/model.png and the
+    outcome into row. Returns the output folder, or None when it failed."""
+    ok, _, msg = run(["reconstruct", proj / "PROJECT.toml", "-o", proj / "out"])
+    row["model_ok"], row["model_msg"] = ok, msg
+    if not ok:
+        return None
+    shutil.copy(proj / "out" / "preview.png", dst / "model.png")
+    return proj / "out"
+
+
 def gallery_plan(path, scale, info, towers_drawn, tmp):
     stem = Path(path).stem
     dst = OUT / "plans" / stem
@@ -253,16 +273,11 @@ def gallery_plan(path, scale, info, towers_drawn, tmp):
         plan = json.loads((tmp / f"{stem}.json").read_text())
         row.update(faces=len(plan["faces"]), towers=plan["towers"],
                    warnings=plan.get("warnings", []))
-        proj = tmp / f"{stem}-project"
-        proj.mkdir()
-        shutil.copy(src, proj / ("plan" + src.suffix))
-        write_project(proj, "plan" + src.suffix, scale)
-        mok, _, mmsg = run(["reconstruct", proj / "PROJECT.toml", "-o", proj / "out"])
-        row["model_ok"], row["model_msg"] = mok, mmsg
-        if mok:
-            shutil.copy(proj / "out" / "preview.png", dst / "model.png")
-            stats = json.loads((proj / "out" / "stats.json").read_text())
-            row["terminals"] = stats.get("terminals")
+        proj, plan_name = project_with_plan(tmp, stem, src)
+        write_project(proj, plan_name, scale)
+        out = reconstruct(proj, dst, row)
+        if out:
+            row["terminals"] = json.loads((out / "stats.json").read_text()).get("terminals")
     return row
 
 
@@ -293,19 +308,13 @@ def gallery_elevation(e, info, tmp):
         row["groups"] = len(g.get("groups", []))
     m = e.get("model")
     if m:
-        proj = tmp / f"{stem}-project"
-        proj.mkdir()
-        plan_src = DATA / m["plan"]
-        shutil.copy(plan_src, proj / ("plan" + plan_src.suffix))
+        proj, plan_name = project_with_plan(tmp, stem, DATA / m["plan"])
         shutil.copy(src, proj / "elevation.png")
-        write_project(proj, "plan" + plan_src.suffix, m["plan_scale"], (e, m))
-        mok, _, mmsg = run(["reconstruct", proj / "PROJECT.toml", "-o", proj / "out"])
-        row["model_ok"], row["model_msg"] = mok, mmsg
-        if mok:
-            shutil.copy(proj / "out" / "preview.png", dst / "model.png")
-            shutil.copy(proj / "out" / "overlays" / "elevation_facade.png",
-                        dst / "facade_in_outline.png")
-            est = json.loads((proj / "out" / "estimate.json").read_text())
+        write_project(proj, plan_name, m["plan_scale"], (e, m))
+        out = reconstruct(proj, dst, row)
+        if out:
+            shutil.copy(out / "overlays" / "elevation_facade.png", dst / "facade_in_outline.png")
+            est = json.loads((out / "estimate.json").read_text())
             mapped = [s for s in est["structures"] if s["facades"]]
             if mapped:
                 s = mapped[0]
@@ -350,7 +359,8 @@ def page(plans, elevations, elapsed):
             "with the training boxes in scripts/gallery.py; windows green, wall purple, floors and",
             "façades outlined) and the Gothic stage (`castellan gothic`: arches and rectangles,",
             "groups, nesting). Where one plan shape is the building drawn, the elevation is",
-            "reconstructed with its paired plan (`[[facade]]` with the façade's outline `bbox`);",
+            "reconstructed with its paired plan (`[[facade]]` with the façade's outline `bbox`;",
+            "the model cell also shows the façade search inside that outline);",
             "otherwise the row says why not.", "",
             "| drawing | façade stage | Gothic stage | input | façade | Gothic | model |",
             "| --- | --- | --- | --- | --- | --- | --- |"]
@@ -362,7 +372,8 @@ def page(plans, elevations, elapsed):
         got = (f"{r['elements']} elements, {r['groups']} groups, {r['gothic_secs']:.1f} s"
                if r["gothic_ok"] else f"**failed**: {r['gothic_msg']}")
         img = lambda n: f"![]({d}/{n})" if (OUT / "elevations" / r["stem"] / n).is_file() else "—"
-        model = (f"{img('model.png')}<br>{r.get('mapped', '')}" if r.get("model_ok")
+        model = (f"{img('model.png')}<br>{r.get('mapped', '')}<br>façade search inside the outline:"
+                 f"<br>{img('facade_in_outline.png')}" if r.get("model_ok")
                  else f"no model: {r.get('model_msg', '')}")
         out.append(f"| {who} | {fac} | {got} | {img(r['input'])} | {img('facade.png')} | "
                    f"{img('gothic.png')} | {model} |")
