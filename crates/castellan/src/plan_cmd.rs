@@ -30,15 +30,15 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         None => args.scale,
         Some(metres) => {
             let bar = parsed.scale_bar.ok_or_else(|| {
-                anyhow!("{file}: no drawn scale bar found (a straight horizontal ruled line); give --scale METRES_PER_PIXEL instead")
+                anyhow!(
+                    "{file}: no drawn scale bar found ({}); give --scale METRES_PER_PIXEL instead",
+                    plan::scalebar::LOOKED_FOR
+                )
             })?;
             let s = bar.scale(metres);
             eprintln!(
-                "{file}: scale bar from ({}, {y}) to ({}, {y}), {} px = {metres} m: {s:.4} m per pixel",
-                bar.x0,
-                bar.x1,
-                bar.length_px,
-                y = bar.y
+                "{file}: scale bar {} = {metres} m: {s:.4} m per pixel",
+                bar.describe()
             );
             Some(s)
         }

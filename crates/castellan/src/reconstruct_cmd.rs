@@ -104,11 +104,17 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         Some(metres) => {
             let found = parsed.scale_bar.ok_or_else(|| {
                 anyhow!(
-                    "{name}: scale_bar = {metres}: no drawn scale bar found in plan = \"{}\" (a straight horizontal ruled line); give scale = METRES_PER_PIXEL instead",
-                    project.plan
+                    "{name}: scale_bar = {metres}: no drawn scale bar found in plan = \"{}\" ({}); give scale = METRES_PER_PIXEL instead",
+                    project.plan,
+                    plan::scalebar::LOOKED_FOR
                 )
             })?;
-            Some(found.scale(metres))
+            let s = found.scale(metres);
+            eprintln!(
+                "{name}: plan scale bar {} = {metres} m: {s:.4} m per pixel",
+                found.describe()
+            );
+            Some(s)
         }
     };
     outputs.add(

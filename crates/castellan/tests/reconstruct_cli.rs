@@ -201,14 +201,16 @@ fn a_syntax_error_has_line_and_column() {
 }
 
 /// Issue 11: `scale_bar` in PROJECT.toml — the bar drawn on the plan gives the scale. A
-/// 150-px bar under the demo castle said to be 15 m long gives its 0.1 m per pixel.
+/// 150-px bar (ticks every 30 px) under the demo castle said to be 15 m long gives its 0.1 m
+/// per pixel.
 #[test]
 fn scale_bar_in_the_project_finds_the_drawn_bar() {
     let project = project_with(|t| t.replace("scale = 0.1", "scale_bar = 15"));
     let plan_path = project.path().join("plan.png");
     let mut plan = image::open(&plan_path).unwrap().to_rgb8();
-    for y in 440..443 {
-        for x in 40..190 {
+    for x in 40..190u32 {
+        let tick = (x - 40) % 30 == 0 || x == 189;
+        for y in if tick { 433..443 } else { 440..443 } {
             plan.put_pixel(x, y, image::Rgb([0, 0, 0]));
         }
     }

@@ -44,10 +44,10 @@ pub fn binarize(grey: &GrayImage, level: u8) -> GrayImage {
 }
 
 /// Sizes and bounding boxes of the 8-connected components of `value` pixels.
-struct Components {
-    labels: Vec<u32>,
-    sizes: Vec<usize>,
-    bbox: Vec<[u32; 4]>,
+pub(crate) struct Components {
+    pub(crate) labels: Vec<u32>,
+    pub(crate) sizes: Vec<usize>,
+    pub(crate) bbox: Vec<[u32; 4]>,
 }
 
 /// Pixel connectivity of a region.
@@ -62,7 +62,7 @@ pub enum Connectivity {
 /// which needs a converted copy of the image and a second pass for sizes: pre-processing of
 /// the 3000 × 2000 benchmark scan went from 0.75–0.96 s to about 0.4 s
 /// (`--example stage_times`, noisy on shared cores).
-fn components(img: &GrayImage, value: u8, conn: Connectivity) -> Components {
+pub(crate) fn components(img: &GrayImage, value: u8, conn: Connectivity) -> Components {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let raw = img.as_raw();
     let mut labels = vec![0u32; w * h];
