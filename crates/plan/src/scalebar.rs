@@ -1,6 +1,6 @@
 //! Drawn scale bars (issue 11; §5.1.1 takes the drawing's scale as given): the longest ruled
-//! line with graduation ticks that is not part of the castle, horizontal or vertical, so that a
-//! user who reads its length off the drawing once gets a model in metres.
+//! horizontal line with graduation ticks that stands apart from the castle, so that a user who
+//! reads its length off the drawing once gets a model in metres.
 
 use image::GrayImage;
 use serde::Serialize;
@@ -70,15 +70,16 @@ const CASTLE_MARGIN: usize = 8;
 const MIN_OPEN: f64 = 0.6;
 
 /// Finds the scale bar. Ink that belongs to the castle (the largest 8-connected region) is
-/// left out; in the rest, every row (and every column, for vertical bars) is scanned for a thin
-/// straight line at least 6 % of the drawing's width (or height) long, seen along 80 % of its
-/// length with gaps of at most 6 px, crossed by three or more short graduation ticks no denser
-/// than one per 6 px, and lying on the open sheet on one side. The longest wins. None when
-/// nothing qualifies.
+/// left out; in the rest, every row is scanned for a thin straight line at least 40 px and 6 %
+/// of the drawing's width long, seen along 80 % of its length with gaps of at most 6 px, crossed
+/// by three or more short ticks that divide it evenly and are no denser than one per 6 px, with
+/// clear paper beside it, on the open sheet, away from the walls; it is trimmed to its outer
+/// full-height ticks. The longest wins. None when nothing qualifies.
 ///
 /// Departs from the earlier rule (one connected region with a 90 %-inked row, outside the
 /// castle's bounding box): real bars are broken by ticks and numerals and often sit within the
-/// bounding box of the moats (Coucy's bar is now found tick to tick: 157 px for 50 m, 0.318 m/px; hand-read 0.32).
+/// bounding box of the moats. Coucy's bar is now found tick to tick: 157 px for 50 m,
+/// 0.318 m/px, hand-read 0.32.
 pub fn find(grey: &GrayImage) -> Option<ScaleBar> {
     let (w, h) = (grey.width() as usize, grey.height() as usize);
     if w == 0 || h == 0 {
