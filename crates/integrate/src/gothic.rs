@@ -10,8 +10,7 @@ use image::RgbImage;
 use nalgebra::Matrix3;
 
 use crate::IntegrateError;
-use crate::photo::{Rectified, map_box, rectify_photo};
-use crate::textures::crop;
+use crate::photo::{Rectified, cut_outline, rectify_photo};
 
 /// A Gothic façade photo with what the user gave for it.
 pub struct GothicPhoto<'a> {
@@ -44,20 +43,13 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
         homography,
         image: rectified,
     } = rectify_photo(photo.name, photo.image, photo.lines, photo.rectified)?;
-    let (rw, rh) = rectified.dimensions();
-    let whole = [0.0, 0.0, f64::from(rw), f64::from(rh)];
-    let bbox = match photo.bbox {
-        Some(b) => map_box(&b, &homography).unwrap_or(whole),
-        None => whole,
+    let (bbox, facade) = match photo.bbox {
+        Some(b) => cut_outline(photo.name, b, &homography, &rectified)?,
+        None => {
+            let (w, h) = rectified.dimensions();
+            ([0.0, 0.0, f64::from(w), f64::from(h)], rectified)
+        }
     };
-    let facade = crop(&rectified, bbox).ok_or_else(|| IntegrateError::Facade {
-        image: photo.name.to_string(),
-        step: "façade box".into(),
-        message: format!(
-            "bbox {:?} has no pixels inside the rectified photo",
-            photo.bbox
-        ),
-    })?;
     let estimate = estimate(&facade, &GothicParams::default())
         .map_err(|e| IntegrateError::facade(photo.name, "arches (§4.1–4.2)", e))?;
     let masonry = masonry::segment(&facade, &estimate, &MasonryParams::default());

@@ -104,21 +104,7 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
             // rectified image (photo → cut-out = translation ∘ H), so everything downstream
             // (points, textures, overlays) stays in one frame; without a background class the
             // search takes the whole cut-out as one façade.
-            let outline_error = |why: String| IntegrateError::Facade {
-                image: photo.name.to_string(),
-                step: "façade outline (bbox)".into(),
-                message: why,
-            };
-            let r = map_box(&b, &homography)
-                .map(|[x0, y0, x1, y1]| [x0.floor(), y0.floor(), x1.ceil(), y1.ceil()])
-                .ok_or_else(|| {
-                    outline_error(format!("bbox {b:?} does not map into the rectified photo"))
-                })?;
-            let cut = crate::textures::crop(&rectified, r).ok_or_else(|| {
-                outline_error(format!(
-                    "bbox {b:?} has no pixels inside the rectified photo"
-                ))
-            })?;
+            let (r, cut) = cut_outline(photo.name, b, &homography, &rectified)?;
             let (x0, y0) = (r[0].max(0.0).round(), r[1].max(0.0).round());
             let shift = Matrix3::new(1.0, 0.0, -x0, 0.0, 1.0, -y0, 0.0, 0.0, 1.0);
             training = inside(&training, [x0, y0], cut.dimensions());
@@ -141,6 +127,33 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         model,
         metres_per_pixel: photo.scale,
     })
+}
+
+/// The user's façade outline `b` (photo pixels) cut out of the rectified photo: the rectangle
+/// it maps to, in whole rectified pixels, and the cut-out. An outline that does not map into
+/// the rectified photo is an error naming the photo, never a silent fall-back to the whole.
+pub(crate) fn cut_outline(
+    name: &str,
+    b: [f64; 4],
+    homography: &Matrix3<f64>,
+    rectified: &RgbImage,
+) -> Result<([f64; 4], RgbImage), IntegrateError> {
+    let outline_error = |why: String| IntegrateError::Facade {
+        image: name.to_string(),
+        step: "façade outline (bbox)".into(),
+        message: why,
+    };
+    let r = map_box(&b, homography)
+        .map(|[x0, y0, x1, y1]| [x0.floor(), y0.floor(), x1.ceil(), y1.ceil()])
+        .ok_or_else(|| {
+            outline_error(format!("bbox {b:?} does not map into the rectified photo"))
+        })?;
+    let cut = crate::textures::crop(rectified, r).ok_or_else(|| {
+        outline_error(format!(
+            "bbox {b:?} has no pixels inside the rectified photo"
+        ))
+    })?;
+    Ok((r, cut))
 }
 
 /// The window and wall boxes moved into a cut-out at `origin` of size `size`, clipped to it;
@@ -201,6 +214,19 @@ pub fn map_box(b: &[f64; 4], h: &Matrix3<f64>) -> Option<[f64; 4]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_outline_is_cut_out_or_refused_by_name() {
+        let img = RgbImage::from_fn(40, 30, |x, y| image::Rgb([x as u8, y as u8, 0]));
+        let id = Matrix3::identity();
+        let (r, cut) = cut_outline("tower.png", [5.0, 4.0, 25.0, 20.0], &id, &img).unwrap();
+        assert_eq!((r, cut.dimensions()), ([5.0, 4.0, 25.0, 20.0], (20, 16)));
+        assert_eq!(cut.get_pixel(0, 0), &image::Rgb([5, 4, 0]));
+        let e = cut_outline("tower.png", [50.0, 40.0, 60.0, 50.0], &id, &img)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("tower.png") && e.contains("bbox"), "{e}");
+    }
 
     #[test]
     fn boxes_shrink_inside_the_mapped_quadrilateral() {
