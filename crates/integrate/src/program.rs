@@ -260,7 +260,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
     };
     let _ = writeln!(
         out,
-        "\n// Shared terminals; walls without a photo pick a sample texture per shape (figure 7.6).\nmasonry :: {masonry}{{j3d.terminal}};\nfacadeWall :: {{j3d.terminal}};\nfacadeGlass :: {{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};\nroof :: appearance(\"color\", {{0.55, 0.2, 0.15}}){{j3d.terminal}};"
+        "\n// Shared terminals; walls without a photo pick a sample texture per shape (figure 7.6).\nmasonry :: {masonry}{{j3d.terminal}};\nfacadeWall :: {{j3d.terminal}};\nfacadeBack :: appearance(\"texture\", \"\"){{masonry}};\nfacadeGlass :: {{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};\nroof :: appearance(\"color\", {{0.55, 0.2, 0.15}}){{j3d.terminal}};"
     );
     out
 }
@@ -547,10 +547,14 @@ fn facade_rules(
     let fid = format!("{id}Facade{k}");
     let (run, through, outside_far, reversed) = side_frame(side);
     // Under a photo the pieces keep its texture untinted.
+    // Under a photo the pieces keep its texture untinted, but only on a skin on the wall's
+    // outer face (a twentieth of the wall); behind it the wall is masonry, so the photo does
+    // not show again on the inner face.
+    let wall = format!("{fid}Wall");
     let (photo, masonry, glass) = match &f.texture {
         Some(t) => (
             format!("appearance(\"photo\", {t:?}, \"color\", {{1, 1, 1}}) "),
-            "facadeWall",
+            wall.as_str(),
             "facadeGlass",
         ),
         None => (String::new(), "masonry", "glass"),
@@ -592,6 +596,17 @@ fn facade_rules(
         relative(&heights),
         floor_names.join(", ")
     );
+    if f.texture.is_some() {
+        let (sizes, names) = if outside_far {
+            ("~19, ~1", "facadeBack, facadeWall")
+        } else {
+            ("~1, ~19", "facadeWall, facadeBack")
+        };
+        let _ = writeln!(
+            rules,
+            "{wall} :: split(\"{through}\", {{{sizes}}}){{{names}}};"
+        );
+    }
     // The east and west walls sit between the north and south ones: their run starts t later.
     let inset = if run == "Z" { t } else { 0.0 };
     let wall_len = if run == "Z" {
@@ -629,7 +644,7 @@ fn facade_rules(
             if *s == "window" {
                 window.clone()
             } else {
-                "masonry".into()
+                masonry.to_string()
             }
         })
         .collect();

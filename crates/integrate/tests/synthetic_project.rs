@@ -115,6 +115,49 @@ fn keep_and_towers_match_facades_and_plan() {
         .filter(|n| model.symbol(n) == "glass")
         .count();
     assert_eq!(windows as u32, castle.floors * castle.windows, "{src}");
+
+    // With the photo stretched over the south wall, it lies on a skin on the wall's outer
+    // (south, +Z) face; the wall behind carries no photo, so none shows inside the keep.
+    let mut textured = estimate.clone();
+    for s in &mut textured.structures {
+        for f in &mut s.facades {
+            f.texture = Some("keep_south.png".into());
+        }
+    }
+    let src = program::generate(&textured, &program::Options::default());
+    let model = vsg::run_with(
+        "model.vsg",
+        &src,
+        &vsg::RunOptions::default(),
+        &mut integrate::library::Library::default(),
+    )
+    .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", &src)));
+    // A node's own appearance is the one it was made with; its rule's appearance reaches
+    // the shapes it makes (the back's masonry).
+    let looks_of = |n: &vsg::tree::Node| {
+        let made = n.children().next().map_or(n, |c| &model.nodes[c as usize]);
+        model.appearance(made).texture.clone()
+    };
+    let z_of = |symbol: &str| -> Vec<f64> {
+        model
+            .nodes
+            .iter()
+            .filter(|n| model.symbol(n) == symbol)
+            .inspect(|n| {
+                let photo = looks_of(n).as_deref() == Some("keep_south.png");
+                assert_eq!(photo, symbol == "facadeWall", "{symbol}");
+            })
+            .map(|n| n.world.translation.vector.z)
+            .collect()
+    };
+    let (skin, back) = (z_of("facadeWall"), z_of("facadeBack"));
+    assert!(!skin.is_empty() && !back.is_empty());
+    let innermost_skin = skin.iter().copied().fold(f64::INFINITY, f64::min);
+    let outermost_back = back.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        innermost_skin > outermost_back,
+        "{innermost_skin} vs {outermost_back}"
+    );
 }
 
 #[test]

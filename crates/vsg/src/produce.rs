@@ -532,6 +532,11 @@ fn set_appearance(
                 }
             },
             "texture" => match value {
+                // "" takes the texture (or photo) off: a wall's back behind its photo.
+                AppearanceValue::Text(s) if s.value.is_empty() => {
+                    a.texture = None;
+                    a.texture_frame = None;
+                }
                 AppearanceValue::Text(s) => {
                     a.texture = Some(s.value.clone());
                     a.texture_line = line;

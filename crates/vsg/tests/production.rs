@@ -205,3 +205,22 @@ fn texture_lists_pick_one_photograph_per_shape_from_the_seed() {
     assert_eq!(first, picks(3));
     assert_ne!(first, picks(4));
 }
+
+/// A photo stretched over a wall, and behind its outer skin `texture ""` takes it off again,
+/// so the wall's back face does not show the photo (reconstruct's façade walls).
+#[test]
+fn an_empty_texture_takes_a_photo_off_the_back_of_a_wall() {
+    let src = "Axiom :: I(\"box\",{4,3,1}){wall};\n\
+               wall :: appearance(\"photo\", \"f.png\") split(\"Z\", {~19, ~1}){back, skin};\n\
+               back :: appearance(\"texture\", \"\"){j3d.terminal};\n\
+               skin :: {j3d.terminal};";
+    let m = vsg::run(src, &RunOptions::default()).unwrap();
+    let looks: Vec<(Option<String>, bool)> = m
+        .terminals()
+        .map(|n| {
+            let a = m.appearance(n);
+            (a.texture.clone(), a.texture_frame.is_some())
+        })
+        .collect();
+    assert_eq!(looks, vec![(None, false), (Some("f.png".into()), true)]);
+}
