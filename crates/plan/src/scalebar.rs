@@ -59,6 +59,10 @@ const MAX_TICK: usize = 14;
 const MIN_CLEAR_SIDE: f64 = 0.9;
 /// … and on its other side, where the numerals are.
 const MIN_LETTERED_SIDE: f64 = 0.4;
+/// With lettering on both sides: share of the clearer side free within 10 px …
+const MIN_LETTERED_BOTH: f64 = 0.6;
+/// … and of both sides free 16–30 px out.
+const MIN_FAR_CLEAR_BOTH: f64 = 0.7;
 /// Distances from the line (px) beyond its numerals, where the paper must be clear …
 const FAR: (isize, isize) = (16, 30);
 /// … along this share of the bar: buildings' outlines have walls there.
@@ -366,7 +370,11 @@ impl Ticks {
         let sides = [(0, 1), (1, 0)].into_iter().any(|(clear, lettered)| {
             share(near[clear]) >= MIN_CLEAR_SIDE && share(far[lettered]) >= MIN_FAR_CLEAR
         });
-        lettered_side_ok && sides
+        // Or lettering close on both sides ("0 100 200 300" above, "Feet" below: Armitage)
+        // with the paper clear beyond it on both.
+        let lettered_both = share(near[0].max(near[1])) >= MIN_LETTERED_BOTH
+            && far.iter().all(|&n| share(n) >= MIN_FAR_CLEAR_BOTH);
+        lettered_side_ok && (sides || lettered_both)
     }
 
     /// Whether, on one side, the paper just past the line's typical thickness is the open
