@@ -489,6 +489,19 @@ mod tests {
     }
 
     #[test]
+    fn a_bar_lettered_above_and_below_is_found() {
+        // Armitage's style: "0 100 200 300" close above, "Feet" close below, paper beyond.
+        let lettered = |x: u32, y: u32| {
+            let along = x.wrapping_sub(150) % 20;
+            let numerals = (4..14).contains(&along) && (160..=165).contains(&y);
+            let word = (180..=230).contains(&x) && x % 3 != 0 && (174..=179).contains(&y);
+            bar(x, y) || (150..=270).contains(&x) && (numerals || word)
+        };
+        let b = find(&sheet(lettered)).unwrap();
+        assert_eq!((b.x0, b.x1, b.y0), (150, 270, 170));
+    }
+
+    #[test]
     fn a_bar_inside_the_moats_bounding_box_is_found() {
         // Coucy's bar sits beside a wall that runs down to the sheet's bottom edge.
         let wall = |x: u32, y: u32| (285..=290).contains(&x) && y >= 100;
