@@ -494,7 +494,7 @@ mod tests {
         let lettered = |x: u32, y: u32| {
             let along = x.wrapping_sub(150) % 20;
             let numerals = (4..14).contains(&along) && (160..=165).contains(&y);
-            let word = (180..=230).contains(&x) && x % 3 != 0 && (174..=179).contains(&y);
+            let word = (180..=230).contains(&x) && !x.is_multiple_of(3) && (174..=179).contains(&y);
             bar(x, y) || (150..=270).contains(&x) && (numerals || word)
         };
         let b = find(&sheet(lettered)).unwrap();
