@@ -13,9 +13,15 @@ use crate::output::Outputs;
 use crate::images::png;
 
 pub fn run(args: &PlanArgs) -> Result<()> {
+    let options = plan::Options {
+        thin_lines: args
+            .thin_lines
+            .unwrap_or(plan::Options::default().thin_lines),
+        ..Default::default()
+    };
     let image = match (&args.batch, &args.image) {
         (Some(dir), _) => {
-            return crate::batch_cmd::run(dir, &args.output, args.scale, &plan::Options::default());
+            return crate::batch_cmd::run(dir, &args.output, args.scale, &options);
         }
         (None, Some(image)) => image,
         (None, None) => return Err(anyhow!("give a plan drawing or --batch DIR")),
@@ -23,8 +29,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     let file = image.display().to_string();
     let img = crate::images::read_image(image)?;
     let started = Instant::now();
-    let parsed =
-        plan::parse(&img, &plan::Options::default()).map_err(|e| anyhow!("{file}: {e}"))?;
+    let parsed = plan::parse(&img, &options).map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
     let scale = match args.scale_bar {
         None => args.scale,
@@ -132,6 +137,22 @@ pub struct PlanArgs {
     /// and the scale (metres per pixel) follows from its length in pixels.
     #[arg(long, value_name = "METRES", value_parser = parse_scale, conflicts_with_all = ["scale", "batch"])]
     pub scale_bar: Option<f64>,
+    /// Remove vault ribs: lines thinner than this fraction of the wall thickness drawn across
+    /// a room that is round without them (0.3 finds Coucy's four corner towers round; off by
+    /// default, see docs/plan.md).
+    #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
+    pub thin_lines: Option<f64>,
+}
+
+fn parse_fraction(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
+    if !(0.0..=1.0).contains(&v) {
+        return Err(format!("the fraction must be between 0 and 1, found '{s}'"));
+    }
+    Ok(v)
 }
 
 fn parse_scale(s: &str) -> Result<f64, String> {
@@ -237,6 +258,18 @@ mod flag_tests {
         assert!(plan_args(&["--scale", "0"]).is_err());
         assert!(plan_args(&["--scale", "-1"]).is_err());
         assert!(plan_args(&["--scale", "nan"]).is_err());
+    }
+
+    #[test]
+    fn plan_thin_lines_flag_is_a_fraction() {
+        assert_eq!(plan_args(&[]).unwrap().thin_lines, None);
+        assert_eq!(
+            plan_args(&["--thin-lines", "0.3"]).unwrap().thin_lines,
+            Some(0.3)
+        );
+        assert!(plan_args(&["--thin-lines", "1.5"]).is_err());
+        assert!(plan_args(&["--thin-lines", "-0.1"]).is_err());
+        assert!(plan_args(&["--thin-lines", "nan"]).is_err());
     }
 
     #[test]

@@ -2,8 +2,8 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--inner-towers]
-//! [--no-drop-marks] [--ward-ratio R] [--overlays DIR] [--all]`; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
-//! how many parse, give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
+//! [--no-drop-marks] [--ward-ratio R] [--thin-lines F] [--overlays DIR] [--all]`; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -25,6 +25,7 @@ fn main() {
         inner_ward_towers: args.iter().any(|a| a == "--inner-towers"),
         drop_marks: !args.iter().any(|a| a == "--no-drop-marks"),
         ward_ratio: arg_value("--ward-ratio").map_or(0.3, |v| v.parse().unwrap()),
+        thin_lines: arg_value("--thin-lines").map_or(0.0, |v| v.parse().unwrap()),
         ..Default::default()
     };
     let mut scores = Vec::new();
@@ -44,6 +45,19 @@ fn main() {
         scores.push(score(parsed.as_ref(), p, set.tolerance_px));
     }
     println!("{}", table(&scores));
+    for (name, four) in [("4-bit grey 300-700 px", true), ("other scans", false)] {
+        let part: Vec<_> = scores
+            .iter()
+            .zip(&set.plans)
+            .filter(|(_, p)| is_four_bit_small(&data.join(&p.file)) == four)
+            .map(|(s, _)| s.clone())
+            .collect();
+        let t = plan::eval::Totals::of(&part);
+        println!(
+            "{name}: {} plans, {} / {} points right, {} towers exact, tower error {}",
+            t.plans, t.right, t.points, t.towers_exact, t.tower_abs_error
+        );
+    }
     times.sort_by(f64::total_cmp);
     println!(
         "time per drawing: median {:.2} s, longest {:.2} s",
@@ -65,6 +79,8 @@ fn all_plans(data: &std::path::Path, opts: &plan::Options) {
         .filter_map(|e| e["file"].as_str())
         .collect();
     let (mut parsed, mut closed, mut towered, mut bars, mut marks) = (0, 0, 0, 0, 0);
+    // [4-bit grey 300-700 px, other]: plans, closed outer wall, >= 1 tower.
+    let mut by_kind = [[0usize; 3]; 2];
     let mut kinds: Vec<(String, usize)> = Vec::new();
     let mut times = Vec::new();
     for f in &files {
@@ -75,6 +91,14 @@ fn all_plans(data: &std::path::Path, opts: &plan::Options) {
         let reasons = match result {
             Ok(p) => {
                 parsed += 1;
+                let k = usize::from(!is_four_bit_small(&data.join(f)));
+                by_kind[k][0] += 1;
+                by_kind[k][1] += usize::from(
+                    p.faces
+                        .iter()
+                        .any(|f| f.label == plan::label::Label::Courtyard),
+                );
+                by_kind[k][2] += usize::from(p.towers > 0);
                 closed += usize::from(
                     p.faces
                         .iter()
@@ -105,6 +129,9 @@ fn all_plans(data: &std::path::Path, opts: &plan::Options) {
         times[times.len() / 2],
         times[times.len() - 1]
     );
+    for (name, [n, c, t]) in ["4-bit grey 300-700 px", "other scans"].iter().zip(by_kind) {
+        println!("  {name}: {n} parsed, {c} with a closed outer wall, {t} with a tower");
+    }
     kinds.sort_by_key(|k| std::cmp::Reverse(k.1));
     for (k, n) in kinds {
         println!("  {n:4}  {k}");
@@ -120,4 +147,20 @@ fn arg_value(flag: &str) -> Option<String> {
     args.iter()
         .position(|a| a == flag)
         .and_then(|i| args.get(i + 1).cloned())
+}
+
+/// A PNG of at most 4 bits per pixel whose longer side is 300–700 px: the small grey scans
+/// issue 11 asks to be reported apart (read from the PNG header; the decoded image no longer
+/// says how many grey levels it had).
+fn is_four_bit_small(path: &std::path::Path) -> bool {
+    let Ok(bytes) = std::fs::read(path) else {
+        return false;
+    };
+    if bytes.len() < 26 || &bytes[..8] != b"\x89PNG\r\n\x1a\n" {
+        return false;
+    }
+    let dim =
+        |at: usize| u32::from_be_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    let long = dim(16).max(dim(20));
+    bytes[24] <= 4 && (300..=700).contains(&long)
 }

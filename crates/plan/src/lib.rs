@@ -86,6 +86,9 @@ pub struct Options {
     /// of further wards (issue 11; departure from §5.1.6 (3), see [`label::heuristics`]);
     /// 0 keeps the single courtyard of the text.
     pub ward_ratio: f64,
+    /// Ink lines thinner than this fraction of the typical wall thickness are removed before
+    /// §5.1.2's steps (vault ribs, hachures; [`binarize::drop_thin_lines`]); 0 keeps them.
+    pub thin_lines: f64,
 }
 
 impl Default for Options {
@@ -99,6 +102,7 @@ impl Default for Options {
             inner_ward_towers: false,
             drop_marks: true,
             ward_ratio: 0.3,
+            thin_lines: 0.0,
         }
     }
 }
@@ -303,7 +307,7 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
 
 fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, PlanError> {
     let (w, h) = grey.dimensions();
-    let (mut bin, mut pre) = binarize::preprocess(grey, opts.min_region);
+    let (mut bin, mut pre) = binarize::preprocess_with(grey, opts.min_region, opts.thin_lines);
     if pre.wall_pixels == 0 {
         return Err(PlanError::NoWalls(pre.threshold));
     }

@@ -61,6 +61,15 @@ impl Canvas {
             }
         }
     }
+    /// Vault ribs across a round room of radius `r` centred at c: `n` diameters of width `t`
+    /// (as the Dictionnaire draws tower vaults, e.g. Coucy and Villandraut).
+    pub fn ribs(&mut self, c: (f64, f64), r: f64, n: usize, t: f64) {
+        for k in 0..n {
+            let a = std::f64::consts::PI * k as f64 / n as f64;
+            let (dx, dy) = (r * a.cos(), r * a.sin());
+            self.wall((c.0 - dx, c.1 - dy), (c.0 + dx, c.1 + dy), t);
+        }
+    }
     /// A square tower centred at c with half side `h`, inside cleared.
     pub fn square_tower(&mut self, c: (f64, f64), h: f64, t: f64) {
         for y in (c.1 - h) as i64..=(c.1 + h) as i64 {
