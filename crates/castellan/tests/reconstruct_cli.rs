@@ -55,7 +55,9 @@ fn demo_reconstructs_coucy_from_its_real_drawings() {
         .iter()
         .filter(|s| s["footprint"]["type"] == "circle")
         .count();
-    assert!(round >= 2, "{round} round structures");
+    // The four corner towers and the donjon; three of them only once the vault ribs drawn
+    // across their rooms are taken out (`thin_lines` in the example's PROJECT.toml).
+    assert_eq!(round, 5, "round structures");
     for f in [
         "model.glb",
         "index.html",

@@ -18,6 +18,10 @@ pub struct Project {
     /// (`plan::scalebar`) and the scale follows from its length in pixels. Instead of `scale`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale_bar: Option<f64>,
+    /// Thin lines (vault ribs) removed from round rooms of the plan before parsing, as a
+    /// fraction of the wall thickness (`castellan plan --thin-lines`); off when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thin_lines: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
@@ -164,6 +168,13 @@ impl Project {
             if self.scale.is_some() {
                 return bad("give either scale (metres per pixel) or scale_bar (the drawn bar's length in metres), not both".into());
             }
+        }
+        if let Some(t) = self.thin_lines
+            && !(0.0..=1.0).contains(&t)
+        {
+            return bad(format!(
+                "thin_lines = {t}: a fraction of the wall thickness, from 0 to 1"
+            ));
         }
         let mut images: Vec<&str> = self.facades.iter().map(|f| f.image.as_str()).collect();
         images.extend(self.gothics.iter().map(|g| g.image.as_str()));
@@ -327,6 +338,12 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("scale_bar"), "{e}");
+        let ribs = GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 0.3");
+        assert_eq!(Project::from_toml(&ribs).unwrap().thin_lines, Some(0.3));
+        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 2"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("thin_lines = 2"), "{e}");
     }
 
     /// Issue 11: a measured elevation's outline and scale are checked like the plan's.

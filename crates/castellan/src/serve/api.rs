@@ -214,6 +214,7 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
                     plan: name.clone(),
                     scale: None,
                     scale_bar: None,
+                    thin_lines: None,
                     seed: None,
                     facades: vec![],
                     gothics: vec![],
