@@ -8,6 +8,17 @@ use integrate::photo::{FacadePhoto, estimate_facade};
 use integrate::project::Correspondence;
 use integrate::{Inputs, integrate, program, synth::Castle};
 
+/// Runs a generated program with the embedded library; a failure shows the program.
+fn run(src: &str) -> vsg::Model {
+    vsg::run_with(
+        "model.vsg",
+        src,
+        &vsg::RunOptions::default(),
+        &mut integrate::library::Library::default(),
+    )
+    .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", src)))
+}
+
 fn keep(structures: &[Structure]) -> &Structure {
     structures
         .iter()
@@ -103,13 +114,7 @@ fn keep_and_towers_match_facades_and_plan() {
 
     // The program runs, and its keep façade has floors × windows window openings.
     let src = program::generate(&estimate, &program::Options::default());
-    let model = vsg::run_with(
-        "model.vsg",
-        &src,
-        &vsg::RunOptions::default(),
-        &mut integrate::library::Library::default(),
-    )
-    .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", &src)));
+    let model = run(&src);
     let windows = model
         .terminals()
         .filter(|n| model.symbol(n) == "glass")
@@ -125,13 +130,7 @@ fn keep_and_towers_match_facades_and_plan() {
         }
     }
     let src = program::generate(&textured, &program::Options::default());
-    let model = vsg::run_with(
-        "model.vsg",
-        &src,
-        &vsg::RunOptions::default(),
-        &mut integrate::library::Library::default(),
-    )
-    .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", &src)));
+    let model = run(&src);
     // A node's own appearance is the one it was made with; its rule's appearance reaches
     // the shapes it makes (the back's masonry).
     let looks_of = |n: &vsg::tree::Node| {
@@ -222,13 +221,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
     );
     // Four windows per floor on a quarter turn: 16 slits around.
     assert!(line.contains("slits = 16"), "{line}");
-    vsg::run_with(
-        "model.vsg",
-        &src,
-        &vsg::RunOptions::default(),
-        &mut integrate::library::Library::default(),
-    )
-    .unwrap_or_else(|e| panic!("{}", e.render("model.vsg", &src)));
+    run(&src);
 }
 
 #[test]
