@@ -21,7 +21,8 @@ interleaved so both see the same machine load, OpenCV Harris (cornerHarris + 3x3
 suppression, one thread) against `BIN corners IMAGE` run with RAYON_NUM_THREADS=1 (the detection
 time it prints, which excludes decoding and writing), --repeat times each, and writes a
 per-image table of the fastest run of each and their ratio (on a shared machine the fastest
-run is the one least disturbed by other work).
+run is the one least disturbed by other work). --castellan-before BIN times an older build in
+the same loop (Harris, BIN, the older build for each run) and adds its columns.
 
 Setup (never inside the repository):
     python3 -m venv /tmp/cv-venv && /tmp/cv-venv/bin/pip install -r benches/requirements.txt
@@ -128,33 +129,54 @@ def castellan_ms(binary, image, scratch):
     return float(m.group(1))
 
 
-def speed_table(folders, binary, repeat, path):
-    """Per-image best times of Harris and castellan, interleaved, and their ratio."""
+def speed_table(folders, binary, repeat, path, before=None):
+    """Per-image best times of Harris and castellan, interleaved, and their ratio; with
+    `before` (an older castellan binary) that one too, in the same loop."""
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         scratch = Path(tmp) / "corners.json"
         for folder in folders:
             for p in images(folder):
                 g = np.float32(cv2.imread(str(p), cv2.IMREAD_GRAYSCALE))
-                h_ms, c_ms = [], []
+                h_ms, c_ms, b_ms = [], [], []
                 for _ in range(repeat):
                     t0 = time.perf_counter()
                     harris(g)
                     h_ms.append((time.perf_counter() - t0) * 1e3)
                     c_ms.append(castellan_ms(binary, p, scratch))
+                    if before:
+                        b_ms.append(castellan_ms(before, p, scratch))
                 h, c = min(h_ms), min(c_ms)
-                rows.append((folder.name, p.name, g.shape[1], g.shape[0], c, h, c / h))
+                b = min(b_ms) if before else float("nan")
+                rows.append((folder.name, p.name, g.shape[1], g.shape[0], c, h, c / h, b, b / h))
                 print(f"{folder.name}/{p.name}: IPFIT {c:.1f} ms, Harris {h:.1f} ms, "
-                      f"ratio {c / h:.2f}", file=sys.stderr)
+                      f"ratio {c / h:.2f}" + (f", before {b:.1f} ms" if before else ""),
+                      file=sys.stderr)
     ratios = [r[6] for r in rows]
     load = os.getloadavg()[0]
     md = [f"Per image, fastest of {repeat} interleaved runs, one thread each; "
-          f"load average at the end {load:.1f} on {os.cpu_count()} cores.", "",
-          "| image | size | IPFIT ms | Harris ms | ratio |", "| --- | --- | ---: | ---: | ---: |"]
-    md += [f"| {s}/{n} | {w}×{h} | {c:.1f} | {hm:.1f} | {r:.2f}× |"
-           for s, n, w, h, c, hm, r in rows]
-    md += ["", f"Median ratio {statistics.median(ratios):.2f}×, "
-               f"range {min(ratios):.2f}–{max(ratios):.2f}× over {len(rows)} images."]
+          f"load average at the end {load:.1f} on {os.cpu_count()} cores.", ""]
+    if before:
+        md += ["| image | size | IPFIT ms | Harris ms | ratio | IPFIT before ms | ratio before |",
+               "| --- | --- | ---: | ---: | ---: | ---: | ---: |"]
+        md += [f"| {s}/{n} | {w}×{h} | {c:.1f} | {hm:.1f} | {r:.1f}× | {b:.1f} | {rb:.1f}× |"
+               for s, n, w, h, c, hm, r, b, rb in rows]
+    else:
+        md += ["| image | size | IPFIT ms | Harris ms | ratio |",
+               "| --- | --- | ---: | ---: | ---: |"]
+        md += [f"| {s}/{n} | {w}×{h} | {c:.1f} | {hm:.1f} | {r:.1f}× |"
+               for s, n, w, h, c, hm, r, _, _ in rows]
+    total = lambda k: sum(r[k] for r in rows)
+    md += ["", f"Median ratio {statistics.median(ratios):.1f}× "
+               f"(range {min(ratios):.1f}–{max(ratios):.1f}× over {len(rows)} images; "
+               f"total {total(4) / 1e3:.2f} s against {total(5) / 1e3:.2f} s, "
+               f"{total(4) / total(5):.1f}×)."]
+    if before:
+        rb = [r[8] for r in rows]
+        md[-1] += (f" Before: median {statistics.median(rb):.1f}× "
+                   f"(range {min(rb):.1f}–{max(rb):.1f}×; total {total(7) / 1e3:.2f} s, "
+                   f"{total(7) / total(5):.1f}×); after / before time: median "
+                   f"{statistics.median(r[4] / r[7] for r in rows):.2f}.")
     path.write_text("\n".join(md) + "\n")
     print(f"written to {path}", file=sys.stderr)
 
@@ -170,13 +192,15 @@ def main():
     ap.add_argument("--overlays", type=float, help="passed to corners-eval --overlays")
     ap.add_argument("--speed-table", type=Path,
                     help="only time Harris against `castellan corners` per image (Markdown)")
+    ap.add_argument("--castellan-before", type=Path,
+                    help="with --speed-table: also time this older castellan binary, interleaved")
     args = ap.parse_args()
     cv2.setNumThreads(1)
     if args.speed_table:
         if not args.castellan:
             sys.exit("--speed-table needs --castellan BIN")
         speed_table([args.data / s for s in args.sequences], args.castellan, args.repeat,
-                    args.speed_table)
+                    args.speed_table, args.castellan_before)
         return
     args.out.mkdir(parents=True, exist_ok=True)
     folders = [args.data / s for s in args.sequences]

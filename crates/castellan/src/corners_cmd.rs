@@ -608,11 +608,11 @@ mod flag_tests {
             .detector
             .params();
         assert_eq!((p.refit_distance, p.max_coherence), (1.5, 1.0));
-        let p = corners_args(&["--first-fit-slack", "1.5"])
+        let p = corners_args(&["--first-fit-slack", "2"])
             .unwrap()
             .detector
             .params();
-        assert_eq!(p.first_fit_slack, 1.5);
+        assert_eq!(p.first_fit_slack, 2.0);
         assert!(corners_args(&["--refit-distance", "0"]).is_err());
     }
 

@@ -11,7 +11,7 @@ fn main() {
         first_fit_slack: std::env::var("FIRST_FIT_SLACK")
             .ok()
             .and_then(|v| v.parse().ok())
-            .unwrap_or(0.0),
+            .unwrap_or(corners::Params::default().first_fit_slack),
         ..corners::Params::default()
     };
     let found = corners::detect(&g, &params).expect("valid parameters");

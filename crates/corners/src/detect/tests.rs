@@ -111,8 +111,10 @@ fn tiled_moments_and_cursor_gathering_give_the_windows_of_a_direct_scan() {
             40.0 + 90.0 * a as u8 as f32 + 70.0 * b as u8 as f32
         })
         .collect();
+    // Every window refitted (no first-fit gate), so every window gathers its points.
     let p = Params {
         max_coherence: 1.0,
+        first_fit_slack: 0.0,
         ..Params::default()
     };
     let edges = edge_map(&Gray::new(w, h, data), p.window, p.sigma, p.subpixel);
@@ -184,6 +186,53 @@ fn tiled_moments_and_cursor_gathering_give_the_windows_of_a_direct_scan() {
         );
         assert_eq!(g.lambda, k.lambda, "{g:?} vs {k:?}");
     }
+}
+
+#[test]
+fn the_first_fit_gate_only_removes_candidates() {
+    // Overlapping rectangles, a tilted bar and a wedge: corners of many angles, T-junctions
+    // and rounded blobs, so the gate has something to reject.
+    let (w, h) = (160usize, 120usize);
+    let data = (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as f64, (i / w) as f64);
+            let a = (10.0..60.0).contains(&x) && (8.0..50.0).contains(&y);
+            let b = (35.0..90.0).contains(&x) && (30.0..75.0).contains(&y);
+            let bar = ((x - 2.0 * y + 60.0) / 5f64.sqrt()).abs() < 6.0 && x > 95.0;
+            let wedge = y > 80.0 && (x - 40.0).abs() < 0.4 * (y - 80.0);
+            let disc = (x - 130.0).powi(2) + (y - 90.0).powi(2) < 200.0;
+            40.0 + 80.0 * a as u8 as f32
+                + 60.0 * b as u8 as f32
+                + 90.0 * bar as u8 as f32
+                + 70.0 * wedge as u8 as f32
+                + 50.0 * disc as u8 as f32
+        })
+        .collect();
+    let img = Gray::new(w, h, data);
+    let plain = Params {
+        first_fit_slack: 0.0,
+        ..Params::default()
+    };
+    let edges = edge_map(&img, plain.window, plain.sigma, plain.subpixel);
+    let all = candidates(&edges, &plain);
+    for slack in [1.0, 1.5, 2.0] {
+        let gated = candidates(
+            &edges,
+            &Params {
+                first_fit_slack: slack,
+                ..plain.clone()
+            },
+        );
+        assert!(gated.len() <= all.len());
+        // A window the gate passes is refitted exactly as without it.
+        for g in &gated {
+            assert!(all.contains(g), "slack {slack}: {g:?} is not a plain candidate");
+        }
+        if slack == 1.0 {
+            assert!(gated.len() < all.len(), "the gate rejected nothing");
+        }
+    }
+    assert!(all.len() > 20, "{} candidates", all.len());
 }
 
 #[test]
