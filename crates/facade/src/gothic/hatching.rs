@@ -29,14 +29,14 @@ impl Default for HatchParams {
             radius: 6,
             min_density: 0.2,
             min_coherence: 0.7,
-            blur: 2.5,
+            blur: 1.8,
         }
     }
 }
 
-/// Row-major mask of hatched pixels: the window around them holds at least `min_density`
-/// edge pixels (thinned Prewitt edges at `edge_threshold`) whose gradient directions are
-/// coherent to at least `min_coherence`.
+/// Row-major mask of hatched pixels: within `radius` of a pixel whose window holds at least
+/// `min_density` edge pixels (thinned Prewitt edges at `edge_threshold`) with gradient
+/// directions coherent to at least `min_coherence`.
 pub fn hatched(gray: &GrayImage, edge_threshold: f64, p: &HatchParams) -> Vec<bool> {
     let (w, h) = (gray.width() as usize, gray.height() as usize);
     let edges = prewitt_edges(gray, edge_threshold);
@@ -64,11 +64,18 @@ pub fn hatched(gray: &GrayImage, edge_threshold: f64, p: &HatchParams) -> Vec<bo
         box_sums(&s2, w, h, p.radius),
     );
     let area = ((2 * p.radius + 1) * (2 * p.radius + 1)) as f64;
-    (0..w * h)
+    let core: Vec<f64> = (0..w * h)
         .map(|i| {
-            count[i] >= p.min_density * area
-                && c2[i].hypot(s2[i]) >= p.min_coherence * count[i]
+            let coherent = c2[i].hypot(s2[i]) >= p.min_coherence * count[i];
+            f64::from(u8::from(count[i] >= p.min_density * area && coherent))
         })
+        .collect();
+    // Where two hatchings of different direction meet (an opening's outline between a ruled
+    // wall and a hatched opening) the window is not coherent although every stroke is
+    // hatching: the mask is grown by the window so the whole border becomes tone.
+    box_sums(&core, w, h, p.radius)
+        .into_iter()
+        .map(|n| n > 0.0)
         .collect()
 }
 
