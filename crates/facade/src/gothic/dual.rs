@@ -108,6 +108,8 @@ impl Sub for Dual {
 
 impl Mul for Dual {
     type Output = Dual;
+    // The product rule: a derivative of a product is a sum.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn mul(self, o: Dual) -> Dual {
         Dual {
             v: self.v * o.v,
@@ -118,6 +120,8 @@ impl Mul for Dual {
 
 impl Div for Dual {
     type Output = Dual;
+    // The quotient rule.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: Dual) -> Dual {
         let q = self.v / o.v;
         Dual {
