@@ -8,6 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
+use facade::gothic::hatching::HatchParams;
 use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
 use image::{GrayImage, Rgb, RgbImage};
 
@@ -22,6 +23,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         min_seed_radius: args.min_radius as f32,
         min_width: 2.0 * args.min_radius,
         min_height: 3.0 * args.min_radius,
+        hatching: args.hatching.then(HatchParams::default),
         ..GothicParams::default()
     };
     let started = Instant::now();
@@ -138,6 +140,10 @@ pub struct GothicArgs {
     /// elements are at least twice as wide and three times as tall.
     #[arg(long, default_value_t = 8.0, value_parser = parse_positive)]
     pub min_radius: f64,
+    /// Engravings: replace parallel hatching and coursing strokes by their tone before the
+    /// edges, so hatched openings show their outline (off for photographs).
+    #[arg(long)]
+    pub hatching: bool,
 }
 
 fn parse_positive(s: &str) -> Result<f64, String> {
@@ -178,6 +184,8 @@ mod flag_tests {
             (PathBuf::from("g.png"), PathBuf::from("g.json"))
         );
         assert_eq!((a.masonry, a.overlay, a.model), (None, None, None));
+        assert!(!a.hatching);
+        assert!(gothic_args(&["--hatching"]).unwrap().hatching);
     }
 
     #[test]

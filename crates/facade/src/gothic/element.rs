@@ -6,6 +6,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::dual::Real;
+
 /// Θ of §4.1 in image pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Theta {
@@ -31,12 +33,13 @@ pub enum ArchKind {
     Pointed,
 }
 
-/// A point on the contour and the arc length it stands for.
+/// A point on the contour and the arc length it stands for (`f64`, or [`Dual`](super::dual::Dual)
+/// with their derivatives by Θ).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample {
-    pub x: f64,
-    pub y: f64,
-    pub ds: f64,
+pub struct Sample<R = f64> {
+    pub x: R,
+    pub y: R,
+    pub ds: R,
 }
 
 /// How many samples each piece of the contour gets. Fixed during one optimisation so the
@@ -168,68 +171,76 @@ impl Theta {
     /// The contour p1 → p2 → p3 → (arch through p4) → p5 → p1 at the given counts, each piece
     /// split into equal arc-length steps, one sample at the middle of each step.
     pub fn contour(&self, counts: SampleCounts) -> Vec<Sample> {
-        let mut out = Vec::with_capacity(counts.sill + 2 * counts.jamb + counts.arch);
-        let [p1, p2, p3, _, p5] = self.constraint_points();
-        line(&mut out, p1, p2, counts.sill);
-        line(&mut out, p2, p3, counts.jamb);
-        self.arch(&mut out, counts.arch);
-        line(&mut out, p5, p1, counts.jamb);
-        out
+        contour_of([self.x0, self.y0, self.h, self.w, self.v], counts)
     }
 
     /// Contour at sub-pixel steps of `step` px.
     pub fn contour_at(&self, step: f64) -> Vec<Sample> {
         self.contour(self.counts(step))
     }
+}
 
-    fn arch(&self, out: &mut Vec<Sample>, n: usize) {
-        let ys = self.springing();
-        if self.v <= FLAT_RISE {
-            line(out, [self.x0 + self.w, ys], [self.x0, ys], n);
-        } else if self.v >= self.w / 2.0 {
-            // Right arc p3 → p4 is centred left of p3, the left arc p4 → p5 right of p5.
-            let r = self.pointed_radius();
-            let phi = ((r - self.w / 2.0) / r).clamp(-1.0, 1.0).acos();
-            let half = n.div_ceil(2);
-            let right = self.x0 + self.w - r;
-            let left = self.x0 + r;
-            arc(out, [right, ys], r, 0.0, phi, half);
-            arc(
-                out,
-                [left, ys],
-                r,
-                std::f64::consts::PI - phi,
-                std::f64::consts::PI,
-                half,
-            );
-        } else {
-            let r = self.segmental_radius();
-            let alpha = (self.w / 2.0 / r).clamp(-1.0, 1.0).asin();
-            let c = [self.x0 + self.w / 2.0, ys + r - self.v];
-            let mid = std::f64::consts::FRAC_PI_2;
-            arc(out, c, r, mid - alpha, mid + alpha, n);
-        }
+/// [`Theta::contour`] over any [`Real`] Θ = [x0, y0, h, w, v]: with `f64` the contour itself,
+/// with [`Dual`](super::dual::Dual) also ∂p/∂Θ and ∂ds/∂Θ of every sample (the analytic
+/// gradient of eq. 4.2's integral). Which pieces make up the arch is decided on the values.
+pub fn contour_of<R: Real>(theta: [R; 5], counts: SampleCounts) -> Vec<Sample<R>> {
+    let [x0, y0, h, w, _] = theta;
+    let mut out = Vec::with_capacity(counts.sill + 2 * counts.jamb + counts.arch + 1);
+    let p1 = [x0, y0];
+    let p2 = [x0 + w, y0];
+    let p3 = [p2[0], p2[1] - h];
+    let p5 = [p1[0], p1[1] - h];
+    line(&mut out, p1, p2, counts.sill);
+    line(&mut out, p2, p3, counts.jamb);
+    arch(&mut out, theta, counts.arch);
+    line(&mut out, p5, p1, counts.jamb);
+    out
+}
+
+fn arch<R: Real>(out: &mut Vec<Sample<R>>, theta: [R; 5], n: usize) {
+    let [x0, y0, h, w, v] = theta;
+    let ys = y0 - h;
+    let half_w = w.scale(0.5);
+    if v.value() <= FLAT_RISE {
+        line(out, [x0 + w, ys], [x0, ys], n);
+    } else if v.value() >= half_w.value() {
+        // Right arc p3 → p4 is centred left of p3, the left arc p4 → p5 right of p5.
+        let r = (w * w.scale(0.25) + v * v) / w;
+        let phi = ((r - half_w) / r).acos_clamped();
+        let half = n.div_ceil(2);
+        let right = x0 + w - r;
+        let left = x0 + r;
+        let pi = R::constant(std::f64::consts::PI);
+        arc(out, [right, ys], r, R::constant(0.0), phi, half);
+        arc(out, [left, ys], r, pi - phi, pi, half);
+    } else {
+        let r = (w * w.scale(0.25) + v * v) / v.scale(2.0);
+        let alpha = (half_w / r).asin_clamped();
+        let c = [x0 + half_w, ys + r - v];
+        let mid = R::constant(std::f64::consts::FRAC_PI_2);
+        arc(out, c, r, mid - alpha, mid + alpha, n);
     }
 }
 
-fn line(out: &mut Vec<Sample>, a: [f64; 2], b: [f64; 2], n: usize) {
+fn line<R: Real>(out: &mut Vec<Sample<R>>, a: [R; 2], b: [R; 2], n: usize) {
     let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let ds = len / n as f64;
+    let ds = len.scale(1.0 / n as f64);
     for i in 0..n {
         let t = (i as f64 + 0.5) / n as f64;
         out.push(Sample {
-            x: a[0] + t * (b[0] - a[0]),
-            y: a[1] + t * (b[1] - a[1]),
+            x: a[0] + (b[0] - a[0]).scale(t),
+            y: a[1] + (b[1] - a[1]).scale(t),
             ds,
         });
     }
 }
 
 /// Counter-clockwise on screen (angles measured upwards, y down) from `from` to `to`.
-fn arc(out: &mut Vec<Sample>, c: [f64; 2], r: f64, from: f64, to: f64, n: usize) {
-    let ds = r * (to - from).abs() / n as f64;
+fn arc<R: Real>(out: &mut Vec<Sample<R>>, c: [R; 2], r: R, from: R, to: R, n: usize) {
+    let sweep = to - from;
+    let ds = r * sweep.scale(sweep.value().signum() / n as f64);
     for i in 0..n {
-        let a = from + (i as f64 + 0.5) / n as f64 * (to - from);
+        let a = from + sweep.scale((i as f64 + 0.5) / n as f64);
         out.push(Sample {
             x: c[0] + r * a.cos(),
             y: c[1] - r * a.sin(),

@@ -2,7 +2,7 @@
 //! maximised like any element, and the parent of every element (the smallest one containing it).
 
 use super::GothicParams;
-use super::detect::{Candidate, plausible, significant};
+use super::detect::{Candidate, iou, plausible, significant};
 use super::element::Theta;
 use super::likelihood::{DistanceMap, fit};
 use super::optimise::maximise;
@@ -51,14 +51,46 @@ pub fn proposals(members: &[Theta]) -> Vec<Theta> {
     out
 }
 
+/// How many proposals survive the first round of CG (see [`enclosing`]).
+const KEEP_AFTER_FIRST_ROUND: usize = 3;
+/// CG iterations of that first round.
+const FIRST_ROUND: u64 = 8;
+
 /// The best significant enclosing arch for a group, if any, containing every member.
+/// Not in §4.2, for speed: every proposal gets a first round of CG; proposals that reach the
+/// same shape (box IoU ≥ 0.9) are run on once, and only the `KEEP_AFTER_FIRST_ROUND` best
+/// of them to convergence (the twelve proposals mostly end on the same two or three arches).
 pub fn enclosing(dt: &DistanceMap, members: &[Theta], params: &GothicParams) -> Option<Candidate> {
     use rayon::prelude::*;
     let bounds = params.bounds();
-    let mut found: Vec<Candidate> = proposals(members)
+    let first = FIRST_ROUND.min(params.max_iters);
+    let mut rough: Vec<Candidate> = proposals(members)
         .par_iter()
-        .filter_map(|start| {
-            let theta = maximise(dt, *start, params.step, bounds, params.max_iters);
+        .map(|start| {
+            let theta = maximise(dt, *start, params.step, bounds, first);
+            Candidate {
+                theta,
+                fit: fit(dt, &theta, params.step),
+            }
+        })
+        .collect();
+    rough.sort_by(|a, b| a.fit.mean_distance.total_cmp(&b.fit.mean_distance));
+    let mut distinct: Vec<Candidate> = Vec::new();
+    for c in rough {
+        if distinct.iter().all(|d| iou(&d.theta, &c.theta) < 0.9) {
+            distinct.push(c);
+        }
+    }
+    distinct.truncate(KEEP_AFTER_FIRST_ROUND);
+    let rest = params.max_iters - first;
+    let mut found: Vec<Candidate> = distinct
+        .par_iter()
+        .filter_map(|c| {
+            let theta = if rest > 0 {
+                maximise(dt, c.theta, params.step, bounds, rest)
+            } else {
+                c.theta
+            };
             let f = fit(dt, &theta, params.step);
             let ok = plausible(&theta, bounds, dt.width, dt.height)
                 && significant(&f, params)

@@ -111,6 +111,25 @@ impl DistanceMap {
         a * (1.0 - fy) + b * fy
     }
 
+    /// Bilinear D at a sub-pixel position and its gradient (∂D/∂x, ∂D/∂y) within that cell
+    /// (one-sided on the cell borders, where the bilinear D has a kink). Outside the image D is
+    /// the constant `outside`, so the gradient is zero there.
+    pub fn at_with_gradient(&self, x: f64, y: f64) -> (f64, f64, f64) {
+        if !(x >= 0.0 && y >= 0.0) || x > (self.width - 1) as f64 || y > (self.height - 1) as f64 {
+            return (self.outside as f64, 0.0, 0.0);
+        }
+        let (xi, yi) = (x.floor() as usize, y.floor() as usize);
+        let (fx, fy) = (x - xi as f64, y - yi as f64);
+        let x1 = (xi + 1).min(self.width - 1);
+        let y1 = (yi + 1).min(self.height - 1);
+        let (d00, d10) = (self.get(xi, yi) as f64, self.get(x1, yi) as f64);
+        let (d01, d11) = (self.get(xi, y1) as f64, self.get(x1, y1) as f64);
+        let a = d00 * (1.0 - fx) + d10 * fx;
+        let b = d01 * (1.0 - fx) + d11 * fx;
+        let ddx = (d10 - d00) * (1.0 - fy) + (d11 - d01) * fy;
+        (a * (1.0 - fy) + b * fy, ddx, b - a)
+    }
+
     /// ∮ D ds over the samples, and ∮ ds.
     pub fn integral(&self, samples: &[Sample]) -> (f64, f64) {
         samples.iter().fold((0.0, 0.0), |(i, l), s| {

@@ -32,8 +32,10 @@
 //! GOTHIC.json is [`GothicEstimate`] serialised (ARCHITECTURE.md contract).
 
 pub mod detect;
+pub mod dual;
 pub mod element;
 pub mod group;
+pub mod hatching;
 pub mod hierarchy;
 pub mod likelihood;
 pub mod masonry;
@@ -84,6 +86,8 @@ pub struct GothicParams {
     pub max_levels: usize,
     /// Slack (px) when testing whether one element contains another.
     pub nesting_tolerance: f64,
+    /// Hatching suppression before the edges (engravings; [`hatching`]), off for photographs.
+    pub hatching: Option<hatching::HatchParams>,
 }
 
 impl Default for GothicParams {
@@ -103,6 +107,7 @@ impl Default for GothicParams {
             group_absolute: 2.0,
             max_levels: 3,
             nesting_tolerance: 3.0,
+            hatching: None,
         }
     }
 }
@@ -176,7 +181,10 @@ pub const MIN_SIDE: u32 = 16;
 
 /// Edges and distance transform of §4.2 for an image.
 pub fn distance_map(img: &RgbImage, params: &GothicParams) -> DistanceMap {
-    let gray = image::imageops::grayscale(img);
+    let mut gray = image::imageops::grayscale(img);
+    if let Some(h) = &params.hatching {
+        gray = hatching::suppress(&gray, params.edge_threshold, h).0;
+    }
     DistanceMap::of_edges(&likelihood::prewitt_edges(&gray, params.edge_threshold))
 }
 

@@ -233,6 +233,55 @@ pub fn synthetic_facade(spec: &SynthSpec, seed: u64) -> Synthetic {
     }
 }
 
+/// The layout of `spec` drawn as an engraving (the hatching test of the Viollet-le-Duc
+/// elevations): white paper, the wall ruled with coursing lines every `course` px, the
+/// tympana hatched diagonally, the window openings hatched vertically every 3 px, and each
+/// element outlined in ink. Only `elements` is filled in the answer (no masonry truth).
+pub fn engraving(spec: &SynthSpec, course: u32, seed: u64) -> Synthetic {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (w, h) = (spec.width, spec.height);
+    let elements = layout(spec);
+    let course = course.max(2);
+    let ink = 35;
+    let mut image = RgbImage::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            let (xf, yf) = (x as f64, y as f64);
+            let window = elements
+                .iter()
+                .any(|e| e.parent.is_some() && e.theta.contains(xf, yf));
+            let arch = elements
+                .iter()
+                .any(|e| e.parent.is_none() && e.theta.contains(xf, yf));
+            let stroke = if window {
+                x % 3 == 0
+            } else if arch {
+                (x + y) % 5 == 0
+            } else {
+                y % course == 0
+            };
+            let tone = if stroke { ink } else { 235 };
+            let a = spec.noise.max(0);
+            let d = if a > 0 { rng.random_range(-a..=a) } else { 0 };
+            image.put_pixel(x, y, Rgb([(tone + d).clamp(0, 255) as u8; 3]));
+        }
+    }
+    for e in &elements {
+        for s in e.theta.contour_at(0.5) {
+            let (xi, yi) = (s.x.round(), s.y.round());
+            if xi >= 0.0 && yi >= 0.0 && xi < w as f64 && yi < h as f64 {
+                image.put_pixel(xi as u32, yi as u32, Rgb([ink as u8; 3]));
+            }
+        }
+    }
+    Synthetic {
+        image,
+        elements,
+        mortar: vec![false; (w * h) as usize],
+        wall: vec![false; (w * h) as usize],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
