@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
-use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::hatching::HatchParams;
+use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
 use image::{GrayImage, Rgb, RgbImage};
 

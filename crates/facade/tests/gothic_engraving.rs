@@ -7,7 +7,11 @@ use facade::gothic::synth::{SynthSpec, engraving};
 use facade::gothic::{GothicEstimate, GothicParams, estimate};
 
 /// How many true elements have an estimate within `tol` px (x0, y0, w, apex).
-fn recovered(truth: &[facade::gothic::synth::TrueElement], est: &GothicEstimate, tol: f64) -> usize {
+fn recovered(
+    truth: &[facade::gothic::synth::TrueElement],
+    est: &GothicEstimate,
+    tol: f64,
+) -> usize {
     truth
         .iter()
         .filter(|t| {
@@ -32,9 +36,21 @@ fn hatched_arches_are_found_once_the_hatching_is_suppressed() {
     let est = estimate(&s.image, &params).unwrap();
     let before = recovered(&s.elements, &plain, 5.0);
     let after = recovered(&s.elements, &est, 5.0);
-    assert!(before < s.elements.len() / 2, "without suppression: {before}");
+    assert!(
+        before < s.elements.len() / 2,
+        "without suppression: {before}"
+    );
     // Every window and the round bay's enclosing arch; the pointed bay's enclosing arch, whose
     // outline is ruled on both sides, is not found (measured: 5 of 5 windows within 4.2 px).
-    assert!(after + 1 >= s.elements.len(), "{after} of {}: {:#?}", s.elements.len(), est.elements);
-    assert!(est.elements.len() <= s.elements.len() + 1, "{:#?}", est.elements);
+    assert!(
+        after + 1 >= s.elements.len(),
+        "{after} of {}: {:#?}",
+        s.elements.len(),
+        est.elements
+    );
+    assert!(
+        est.elements.len() <= s.elements.len() + 1,
+        "{:#?}",
+        est.elements
+    );
 }

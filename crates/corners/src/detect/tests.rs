@@ -226,7 +226,10 @@ fn the_first_fit_gate_only_removes_candidates() {
         assert!(gated.len() <= all.len());
         // A window the gate passes is refitted exactly as without it.
         for g in &gated {
-            assert!(all.contains(g), "slack {slack}: {g:?} is not a plain candidate");
+            assert!(
+                all.contains(g),
+                "slack {slack}: {g:?} is not a plain candidate"
+            );
         }
         if slack == 1.0 {
             assert!(gated.len() < all.len(), "the gate rejected nothing");

@@ -207,7 +207,10 @@ mod tests {
     #[test]
     fn clamped_inverse_trig_is_flat_outside_its_domain() {
         assert_eq!(Dual::var(1.5, 0).acos_clamped().d, [0.0; N]);
-        assert_eq!(Dual::var(-1.0, 0).asin_clamped().v, -std::f64::consts::FRAC_PI_2);
+        assert_eq!(
+            Dual::var(-1.0, 0).asin_clamped().v,
+            -std::f64::consts::FRAC_PI_2
+        );
         assert_eq!(Dual::var(0.0, 0).hypot(Dual::var(0.0, 1)).d, [0.0; N]);
     }
 }

@@ -4,9 +4,9 @@
 //! hatched opening instead of every stroke inside it.
 
 use image::{GrayImage, Luma};
-use serde::{Deserialize, Serialize};
 use imageproc::filter::gaussian_blur_f32;
 use imageproc::gradients::{horizontal_prewitt, vertical_prewitt};
+use serde::{Deserialize, Serialize};
 
 use super::likelihood::prewitt_edges;
 
@@ -113,9 +113,9 @@ fn box_sums(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
         let (y0, y1) = (y.saturating_sub(r), (y + r + 1).min(h));
         for x in 0..w {
             let (x0, x1) = (x.saturating_sub(r), (x + r + 1).min(w));
-            out[y * w + x] = sat[y1 * (w + 1) + x1] - sat[y0 * (w + 1) + x1]
-                - sat[y1 * (w + 1) + x0]
-                + sat[y0 * (w + 1) + x0];
+            out[y * w + x] =
+                sat[y1 * (w + 1) + x1] - sat[y0 * (w + 1) + x1] - sat[y1 * (w + 1) + x0]
+                    + sat[y0 * (w + 1) + x0];
         }
     }
     out
@@ -128,7 +128,10 @@ mod tests {
     #[test]
     fn box_sums_of_ones_count_the_clipped_window() {
         let s = box_sums(&[1.0; 12], 4, 3, 1);
-        assert_eq!(s, vec![4.0, 6.0, 6.0, 4.0, 6.0, 9.0, 9.0, 6.0, 4.0, 6.0, 6.0, 4.0]);
+        assert_eq!(
+            s,
+            vec![4.0, 6.0, 6.0, 4.0, 6.0, 9.0, 9.0, 6.0, 4.0, 6.0, 6.0, 4.0]
+        );
     }
 
     /// Vertical strokes 4 px apart on the left half, one outline on the right half.

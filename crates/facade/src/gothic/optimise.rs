@@ -368,8 +368,20 @@ mod tests {
         }
         // The joint cost of a group: shared [h, w, a], one (x0, y0) each.
         let members = [
-            Theta { x0: 10.3, y0: 84.1, h: 28.7, w: 22.2, v: 11.9 },
-            Theta { x0: 41.6, y0: 86.2, h: 28.7, w: 22.2, v: 11.9 },
+            Theta {
+                x0: 10.3,
+                y0: 84.1,
+                h: 28.7,
+                w: 22.2,
+                v: 11.9,
+            },
+            Theta {
+                x0: 41.6,
+                y0: 86.2,
+                h: 28.7,
+                w: 22.2,
+                v: 11.9,
+            },
         ];
         let p = vec![28.7, 22.2, 40.6, 10.3, 84.1, 41.6, 86.2];
         let c = cost(&dt, &members, true);
