@@ -33,20 +33,14 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     let elapsed = started.elapsed();
     let scale = match args.scale_bar {
         None => args.scale,
-        Some(metres) => {
-            let bar = parsed.scale_bar.ok_or_else(|| {
+        Some(metres) => Some(
+            scale_from_bar(&parsed, metres, &format!("{file}: scale bar")).ok_or_else(|| {
                 anyhow!(
                     "{file}: no drawn scale bar found ({}); give --scale METRES_PER_PIXEL instead",
                     plan::scalebar::LOOKED_FOR
                 )
-            })?;
-            let s = bar.scale(metres);
-            eprintln!(
-                "{file}: scale bar {} = {metres} m: {s:.4} m per pixel",
-                bar.describe()
-            );
-            Some(s)
-        }
+            })?,
+        ),
     };
 
     let mut outputs = Outputs::default();
@@ -142,6 +136,18 @@ pub struct PlanArgs {
     /// default, see docs/plan.md).
     #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
     pub thin_lines: Option<f64>,
+}
+
+/// Metres per pixel from the bar drawn on the plan, said to be `metres` long; prints `label`
+/// and where the bar is, so the user can check it. `None` when the finder sees no bar.
+pub(crate) fn scale_from_bar(parsed: &plan::ParsedPlan, metres: f64, label: &str) -> Option<f64> {
+    let bar = parsed.scale_bar?;
+    let s = bar.scale(metres);
+    eprintln!(
+        "{label} {} = {metres} m: {s:.4} m per pixel",
+        bar.describe()
+    );
+    Some(s)
 }
 
 fn parse_fraction(s: &str) -> Result<f64, String> {

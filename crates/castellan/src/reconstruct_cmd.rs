@@ -105,21 +105,16 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     stages.push(("plan".into(), ms(t)));
     let plan_scale = match project.scale_bar {
         None => project.scale,
-        Some(metres) => {
-            let found = parsed.scale_bar.ok_or_else(|| {
-                anyhow!(
-                    "{name}: scale_bar = {metres}: no drawn scale bar found in plan = \"{}\" ({}); give scale = METRES_PER_PIXEL instead",
-                    project.plan,
-                    plan::scalebar::LOOKED_FOR
-                )
-            })?;
-            let s = found.scale(metres);
-            eprintln!(
-                "{name}: plan scale bar {} = {metres} m: {s:.4} m per pixel",
-                found.describe()
-            );
-            Some(s)
-        }
+        Some(metres) => Some(
+            crate::plan_cmd::scale_from_bar(&parsed, metres, &format!("{name}: plan scale bar"))
+                .ok_or_else(|| {
+                    anyhow!(
+                        "{name}: scale_bar = {metres}: no drawn scale bar found in plan = \"{}\" ({}); give scale = METRES_PER_PIXEL instead",
+                        project.plan,
+                        plan::scalebar::LOOKED_FOR
+                    )
+                })?,
+        ),
     };
     outputs.add(
         &outdir.join("overlays/plan_labels.png"),
