@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use facade::gothic::masonry::{MasonryParams, segment};
-use facade::gothic::synth::{SynthSpec, synthetic_facade};
+use facade::gothic::synth::{SynthSpec, recovered, synthetic_facade};
 use facade::gothic::{GothicParams, VsgOptions, detect, distance_map, organise, to_vsg};
 
 fn bench(c: &mut Criterion) {
@@ -23,18 +23,8 @@ fn bench(c: &mut Criterion) {
             .save(path)
             .expect("GOTHIC_BENCH_IMAGE: cannot write the picture");
     }
-    let recovered = s
-        .elements
-        .iter()
-        .filter(|t| {
-            est.elements.iter().any(|e| {
-                let (a, b) = (e.theta(), t.theta);
-                [a.x0 - b.x0, a.y0 - b.y0, a.w - b.w, a.apex() - b.apex()]
-                    .iter()
-                    .all(|d| d.abs() <= 4.0)
-            })
-        })
-        .count();
+    let shapes: Vec<_> = est.elements.iter().map(|e| e.theta()).collect();
+    let recovered = recovered(&s.elements, &shapes, 4.0);
     eprintln!(
         "1000x1000 synthetic façade: {recovered} of {} true elements within 4 px, {} detected, {} groups, {} nested, {} stones",
         s.elements.len(),

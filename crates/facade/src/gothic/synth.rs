@@ -85,6 +85,22 @@ pub struct TrueElement {
     pub group: Option<usize>,
 }
 
+/// How many of the true elements some found shape matches within `tol` px in x0, y0, width and
+/// apex height: the recovery figure of the synthetic tests and the benchmark.
+pub fn recovered(truth: &[TrueElement], found: &[Theta], tol: f64) -> usize {
+    truth
+        .iter()
+        .filter(|t| {
+            found.iter().any(|a| {
+                let b = t.theta;
+                [a.x0 - b.x0, a.y0 - b.y0, a.w - b.w, a.apex() - b.apex()]
+                    .iter()
+                    .all(|d| d.abs() <= tol)
+            })
+        })
+        .count()
+}
+
 /// The picture and its answers.
 #[derive(Debug, Clone)]
 pub struct Synthetic {
