@@ -107,17 +107,14 @@ pub fn find(grey: &GrayImage) -> Option<ScaleBar> {
         open: &open,
         w,
         h,
-        transposed: false,
     };
-    longest_bar(&grid)
-        .map(|(a, b, at)| (a, at, b, at))
-        .map(|(x0, y0, x1, y1)| ScaleBar {
-            x0: x0 as u32,
-            y0: y0 as u32,
-            x1: x1 as u32,
-            y1: y1 as u32,
-            length_px: (x1 - x0 + y1 - y0 + 1) as u32,
-        })
+    longest_bar(&grid).map(|(x0, x1, y)| ScaleBar {
+        x0: x0 as u32,
+        y0: y as u32,
+        x1: x1 as u32,
+        y1: y as u32,
+        length_px: (x1 - x0 + 1) as u32,
+    })
 }
 
 /// Paper pixels 4-connected to the sheet's border.
@@ -137,37 +134,26 @@ fn sheet_around_the_drawing(bin: &GrayImage) -> Vec<bool> {
     paper.labels.iter().map(|&l| outside[l as usize]).collect()
 }
 
-/// The masks read along rows (`transposed` = false) or along columns.
+/// The masks, read along rows: position `along` (x) on line `line` (y).
 struct Grid<'a> {
     ink: &'a [bool],
     castle: &'a [bool],
     open: &'a [bool],
     w: usize,
     h: usize,
-    transposed: bool,
 }
 
 impl Grid<'_> {
     /// Length of a line and the number of lines.
     fn dims(&self) -> (usize, usize) {
-        if self.transposed {
-            (self.h, self.w)
-        } else {
-            (self.w, self.h)
-        }
+        (self.w, self.h)
     }
 
     fn index(&self, along: usize, line: isize) -> Option<usize> {
-        let (len, lines) = self.dims();
-        if line < 0 || line as usize >= lines || along >= len {
+        if line < 0 || line as usize >= self.h || along >= self.w {
             return None;
         }
-        let (x, y) = if self.transposed {
-            (line as usize, along)
-        } else {
-            (along, line as usize)
-        };
-        Some(y * self.w + x)
+        Some(line as usize * self.w + along)
     }
 
     /// Ink at position `along` on line `line`; outside the image is paper.
