@@ -96,11 +96,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let plan_path = dir.join(&project.plan);
     let plan_image =
         read_image(&plan_path).with_context(|| format!("{name}: plan = \"{}\"", project.plan))?;
-    let plan_options = plan::Options {
-        thin_lines: project.thin_lines.unwrap_or(0.0),
-        ..Default::default()
-    };
-    let parsed = plan::parse(&plan_image, &plan_options)
+    let parsed = plan::parse(&plan_image, &project.plan_options())
         .map_err(|e| anyhow!("{name}: plan = \"{}\": {e}", project.plan))?;
     stages.push(("plan".into(), ms(t)));
     let plan_scale = match project.scale_bar {

@@ -125,6 +125,15 @@ pub enum ProjectError {
 }
 
 impl Project {
+    /// How the plan drawing is parsed: every command that parses a project's plan (reconstruct,
+    /// the server's plan stage) uses these, so its overlay and its model agree.
+    pub fn plan_options(&self) -> plan::Options {
+        plan::Options {
+            thin_lines: self.thin_lines.unwrap_or(0.0),
+            ..Default::default()
+        }
+    }
+
     /// Parses and checks a PROJECT.toml text.
     pub fn from_toml(text: &str) -> Result<Project, ProjectError> {
         let project: Project = toml::from_str(text).map_err(|e| {
@@ -339,7 +348,11 @@ plan_points = [[10, 10], [20, 20]]
             .to_string();
         assert!(e.contains("scale_bar"), "{e}");
         let ribs = GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 0.3");
-        assert_eq!(Project::from_toml(&ribs).unwrap().thin_lines, Some(0.3));
+        let ribbed = Project::from_toml(&ribs).unwrap();
+        assert_eq!(ribbed.thin_lines, Some(0.3));
+        assert_eq!(ribbed.plan_options().thin_lines, 0.3);
+        let plain = Project::from_toml(GOOD).unwrap().plan_options();
+        assert_eq!(plain.thin_lines, plan::Options::default().thin_lines);
         let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 2"))
             .unwrap_err()
             .to_string();

@@ -61,7 +61,7 @@ pub async fn plan(State(app): State<Arc<App>>) -> Reply {
         let t = Instant::now();
         let path = app.store.path(&p.plan).map_err(err(StatusCode::CONFLICT))?;
         let image = read_image(&path).map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
-        let parsed = plan::parse(&image, &plan::Options::default())
+        let parsed = plan::parse(&image, &p.plan_options())
             .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{}: {e}", p.plan)))?;
         let overlay = "out/overlays/plan_labels.png";
         write_png(
