@@ -8,6 +8,7 @@ use serde_json::{Value, json};
 use crate::ParsedPlan;
 use crate::fit::Fit;
 use crate::label::Label;
+use crate::scalebar::ScaleBar;
 
 /// `{"0": "castle_surroundings", ...}`, the legend of LABELS.png.
 pub fn legend() -> Value {
@@ -54,14 +55,46 @@ pub fn labels_image(p: &ParsedPlan) -> GrayImage {
 }
 
 /// The drawing in grey under the label colours: walls opaque, open spaces half-transparent.
+/// A scale bar found on the sheet is framed in [`SCALE_BAR_COLOUR`], so the user can check
+/// what the metres hang on.
 pub fn overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
-    RgbImage::from_fn(p.width, p.height, |x, y| {
+    let mut img = RgbImage::from_fn(p.width, p.height, |x, y| {
         let l = Label::ALL[p.labels[(y * p.width + x) as usize] as usize];
         let c = l.color();
         let g = f64::from(grey.get_pixel(x, y)[0]);
         let a = if l.is_wall() { 0.85 } else { 0.45 };
         Rgb(c.map(|v| (a * f64::from(v) + (1.0 - a) * g).round() as u8))
-    })
+    });
+    if let Some(bar) = &p.scale_bar {
+        let [x0, y0, x1, y1] = scale_bar_frame(bar, p.width, p.height);
+        for x in x0..=x1 {
+            for y in [y0, y1] {
+                img.put_pixel(x, y, Rgb(SCALE_BAR_COLOUR));
+            }
+        }
+        for y in y0..=y1 {
+            for x in [x0, x1] {
+                img.put_pixel(x, y, Rgb(SCALE_BAR_COLOUR));
+            }
+        }
+    }
+    img
+}
+
+/// Colour of the frame drawn round a found scale bar (no label uses it).
+pub const SCALE_BAR_COLOUR: [u8; 3] = [230, 0, 200];
+
+/// The frame round a scale bar: its ticks reach up to 14 px either side of the line, so the
+/// frame stands a little beyond, clipped to the image.
+fn scale_bar_frame(bar: &ScaleBar, width: u32, height: u32) -> [u32; 4] {
+    const MARGIN: u32 = 4;
+    const HALF_HEIGHT: u32 = 8;
+    [
+        bar.x0.saturating_sub(MARGIN),
+        bar.y0.min(bar.y1).saturating_sub(HALF_HEIGHT),
+        (bar.x1 + MARGIN).min(width - 1),
+        (bar.y0.max(bar.y1) + HALF_HEIGHT).min(height - 1),
+    ]
 }
 
 fn hex(l: Label) -> String {
@@ -167,6 +200,85 @@ pub fn svg(p: &ParsedPlan) -> String {
             _ => {}
         }
     }
+    if let Some(bar) = &p.scale_bar {
+        let [x0, y0, x1, y1] = scale_bar_frame(bar, p.width, p.height);
+        let [r, g, b] = SCALE_BAR_COLOUR;
+        let _ = writeln!(
+            s,
+            r##"<rect id="scale_bar" x="{x0}" y="{y0}" width="{}" height="{}" fill="none" stroke="#{r:02x}{g:02x}{b:02x}"><title>scale bar, {} px</title></rect>"##,
+            x1 - x0,
+            y1 - y0,
+            bar.length_px
+        );
+    }
     s.push_str("</svg>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::Canvas;
+
+    fn plan_with_bar(bar: Option<ScaleBar>) -> ParsedPlan {
+        let mut c = Canvas::new(200, 160);
+        c.poly(
+            &[(40.0, 30.0), (160.0, 30.0), (160.0, 110.0), (40.0, 110.0)],
+            6.0,
+        );
+        let img = image::DynamicImage::ImageLuma8(c.0);
+        let mut p = crate::parse(&img, &crate::Options::default()).unwrap();
+        p.scale_bar = bar;
+        p
+    }
+
+    const BAR: ScaleBar = ScaleBar {
+        x0: 50,
+        y0: 140,
+        x1: 150,
+        y1: 140,
+        length_px: 101,
+    };
+
+    #[test]
+    fn overlay_frames_the_scale_bar_and_nothing_else() {
+        let grey = GrayImage::from_pixel(200, 160, Luma([255]));
+        let framed = |p: &ParsedPlan| {
+            overlay(p, &grey)
+                .pixels()
+                .filter(|px| px.0 == SCALE_BAR_COLOUR)
+                .count()
+        };
+        let with = plan_with_bar(Some(BAR));
+        // Frame 46..=154 × 132..=148: two rows of 109 and two columns of 17, corners once.
+        assert_eq!(framed(&with), 2 * 109 + 2 * 17 - 4);
+        assert_eq!(overlay(&with, &grey).get_pixel(46, 140).0, SCALE_BAR_COLOUR);
+        assert_eq!(framed(&plan_with_bar(None)), 0);
+    }
+
+    #[test]
+    fn frame_is_clipped_to_the_image() {
+        let bar = ScaleBar {
+            x0: 1,
+            y0: 158,
+            x1: 198,
+            y1: 158,
+            length_px: 198,
+        };
+        assert_eq!(scale_bar_frame(&bar, 200, 160), [0, 150, 199, 159]);
+        let p = plan_with_bar(Some(bar));
+        let grey = GrayImage::from_pixel(200, 160, Luma([255]));
+        assert_eq!(overlay(&p, &grey).get_pixel(0, 159).0, SCALE_BAR_COLOUR);
+    }
+
+    #[test]
+    fn svg_names_the_scale_bar_with_its_length() {
+        let s = svg(&plan_with_bar(Some(BAR)));
+        assert!(
+            s.contains(r#"<rect id="scale_bar" x="46" y="132" width="108" height="16""#),
+            "{s}"
+        );
+        assert!(s.contains("scale bar, 101 px"));
+        assert!(!svg(&plan_with_bar(None)).contains("scale_bar"));
+    }
 }
