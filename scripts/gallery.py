@@ -272,7 +272,7 @@ def gallery_plan(path, scale, info, towers_drawn, tmp):
     if ok:
         plan = json.loads((tmp / f"{stem}.json").read_text())
         row.update(faces=len(plan["faces"]), towers=plan["towers"],
-                   warnings=plan.get("warnings", []))
+                   warnings=plan.get("warnings", []), scale_bar=plan.get("scale_bar"))
         proj, plan_name = project_with_plan(tmp, stem, src)
         write_project(proj, plan_name, scale)
         out = reconstruct(proj, dst, row)
@@ -334,7 +334,8 @@ def page(plans, elevations, elapsed):
            "from Project Gutenberg editions mirrored by GITenberg, and from archive.org); each row",
            "names its book and author.", "", "## Plans", "",
            "Each plan: the input, `castellan plan --overlay` (colours by label, legend in",
-           "ARCHITECTURE.md), the vectorised walls (`--svg`), and the model `castellan reconstruct`",
+           "ARCHITECTURE.md; a scale bar found on the sheet is framed in magenta — whether it",
+           "is the bar is for the reader to judge), the vectorised walls (`--svg`), and the model `castellan reconstruct`",
            "builds from the plan alone (class heights of §5.3; library towers, keep and walls).", "",
            "| drawing | result | input | labels | walls (SVG) | model |",
            "| --- | --- | --- | --- | --- | --- |"]
@@ -345,6 +346,9 @@ def page(plans, elevations, elapsed):
             drawn = r["towers_drawn"]
             towers = f"{r['towers']} towers" + (f" (drawn: {drawn})" if drawn is not None else "")
             res = f"{r['faces']} faces, {towers}, {r['secs']:.1f} s"
+            bar = r.get("scale_bar")
+            res += (f"<br>scale bar found: {bar['length_px']} px at ({bar['x0']}, {bar['y0']}), "
+                    "framed in magenta") if bar else "<br>no scale bar found"
             if r["warnings"]:
                 res += "<br>⚠ " + "<br>⚠ ".join(r["warnings"])
             if not r.get("model_ok"):
