@@ -39,6 +39,7 @@
 //! ```
 
 pub mod binarize;
+pub mod bulges;
 pub mod eval;
 pub mod extrude;
 pub mod fit;
@@ -89,6 +90,9 @@ pub struct Options {
     /// Ink lines thinner than this fraction of the typical wall thickness are removed before
     /// §5.1.2's steps (vault ribs, hachures; [`binarize::drop_thin_lines`]); 0 keeps them.
     pub thin_lines: f64,
+    /// Count bulges of the castle's outline with no room of their own as towers
+    /// ([`bulges::find`]; issue 11, departure from §5.1.6 (4)).
+    pub bulge_towers: bool,
 }
 
 impl Default for Options {
@@ -103,6 +107,7 @@ impl Default for Options {
             drop_marks: true,
             ward_ratio: 0.3,
             thin_lines: 0.0,
+            bulge_towers: true,
         }
     }
 }
@@ -157,8 +162,11 @@ pub struct ParsedPlan {
     pub labels: Vec<u8>,
     /// The cleaned binary drawing (1 = wall).
     pub walls: Mask,
-    /// Number of towers found: groups of tower-wall edges (§5.1.6 (4)) joined at a vertex.
+    /// Number of towers found: groups of tower-wall edges (§5.1.6 (4)) joined at a vertex,
+    /// plus the bulge towers.
     pub towers: usize,
+    /// Towers found as bulges of the castle's outline, without a room ([`bulges::find`]).
+    pub bulge_towers: Vec<bulges::BulgeTower>,
     pub pre: binarize::PreStats,
     /// What the pipeline could not find (partial results say so here).
     pub warnings: Vec<String>,
@@ -299,6 +307,14 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         labels,
         walls,
         towers: p.towers,
+        bulge_towers: p
+            .bulge_towers
+            .into_iter()
+            .map(|t| bulges::BulgeTower {
+                center: [small(t.center[0]), small(t.center[1])],
+                radius: t.radius * inv,
+            })
+            .collect(),
         pre: p.pre,
         warnings: p.warnings,
         scale_bar: p.scale_bar,
@@ -395,7 +411,7 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
         ward_ratio: opts.ward_ratio,
     };
     let labelling = label::heuristics(&scene);
-    let labels = label::pixel_labels(&scene, &labelling);
+    let mut labels = label::pixel_labels(&scene, &labelling);
 
     // §5.1.5: fits for edges, and circles / rectangles for the loops of the faces.
     let to_f = |p: &(u32, u32)| [p.0 as f64, p.1 as f64];
@@ -469,7 +485,12 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
                 .into(),
         );
     }
-    let towers = count_towers(&edges, g.vertices.len());
+    let bulge_towers = if opts.bulge_towers {
+        find_bulge_towers(&mut labels, &walls, &edges)
+    } else {
+        Vec::new()
+    };
+    let towers = count_towers(&edges, g.vertices.len()) + bulge_towers.len();
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {
         warnings.push("no towers found on the outer wall".into());
     }
@@ -482,8 +503,57 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
         labels,
         walls,
         towers,
+        bulge_towers,
         pre,
         warnings,
         scale_bar: None,
     })
+}
+
+/// Bulge towers of the outline, measured against the outer wall's median thickness; their wall
+/// pixels become tower walls.
+fn find_bulge_towers(
+    labels: &mut [u8],
+    walls: &Mask,
+    edges: &[PlanEdge],
+) -> Vec<bulges::BulgeTower> {
+    // An edge's thickness is averaged along its chain, towers included, so the curtain is
+    // taken at the lower quartile of the outer wall's length.
+    let mut outer: Vec<(f64, usize)> = edges
+        .iter()
+        .filter(|e| e.label == Label::CastleOuterWall)
+        .map(|e| (e.thickness, e.points.len()))
+        .collect();
+    outer.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: usize = outer.iter().map(|e| e.1).sum();
+    let mut run = 0;
+    let Some(curtain) = outer.iter().find_map(|&(t, n)| {
+        run += n;
+        (4 * run >= total).then_some(t)
+    }) else {
+        return Vec::new();
+    };
+    let towers = bulges::find(labels, walls.width, walls.height, curtain);
+    let w = walls.width as usize;
+    for t in &towers {
+        let r = t.radius + 1.0;
+        let (x0, x1) = (
+            (t.center[0] - r).max(0.0) as usize,
+            (t.center[0] + r) as usize,
+        );
+        let (y0, y1) = (
+            (t.center[1] - r).max(0.0) as usize,
+            (t.center[1] + r) as usize,
+        );
+        for y in y0..=y1.min(walls.height as usize - 1) {
+            for x in x0..=x1.min(w - 1) {
+                let i = y * w + x;
+                let inside = (x as f64 - t.center[0]).hypot(y as f64 - t.center[1]) <= r;
+                if inside && walls.data[i] == 1 && labels[i] == Label::CastleOuterWall as u8 {
+                    labels[i] = Label::TowerWall as u8;
+                }
+            }
+        }
+    }
+    towers
 }

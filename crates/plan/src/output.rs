@@ -30,6 +30,7 @@ pub fn plan_json(p: &ParsedPlan, scale: Option<f64>) -> Value {
         "scale": scale,
         "legend": legend(),
         "towers": p.towers,
+        "bulge_towers": p.bulge_towers,
         "scale_bar": p.scale_bar,
         "warnings": p.warnings,
         "preprocessing": p.pre,
