@@ -420,6 +420,10 @@ pub struct DetectorArgs {
     /// (speed-up, not in §2.1.3).
     #[arg(long, default_value_t = corners::Params::default().first_fit_slack, value_parser = parse_finite)]
     pub first_fit_slack: f64,
+    /// Skip the refit of a window whose first-fit corner lies within this many pixels of a
+    /// corner candidate already found (0: off; speed-up, not in §2.1).
+    #[arg(long, default_value_t = corners::Params::default().duplicate_radius, value_parser = parse_nonnegative)]
+    pub duplicate_radius: f64,
 }
 
 impl DetectorArgs {
@@ -437,6 +441,7 @@ impl DetectorArgs {
             refit_distance: self.refit_distance,
             max_coherence: self.max_coherence,
             first_fit_slack: self.first_fit_slack,
+            duplicate_radius: self.duplicate_radius,
             ..corners::Params::default()
         }
     }
@@ -483,6 +488,14 @@ fn parse_finite(s: &str) -> Result<f64, String> {
         .map_err(|_| format!("'{s}' is not a number"))?;
     if !v.is_finite() {
         return Err(format!("'{s}' is not a finite number"));
+    }
+    Ok(v)
+}
+
+fn parse_nonnegative(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    if v < 0.0 {
+        return Err(format!("'{s}' must not be negative"));
     }
     Ok(v)
 }
@@ -614,6 +627,12 @@ mod flag_tests {
             .params();
         assert_eq!(p.first_fit_slack, 2.0);
         assert!(corners_args(&["--refit-distance", "0"]).is_err());
+        let p = corners_args(&["--duplicate-radius", "1.5"])
+            .unwrap()
+            .detector
+            .params();
+        assert_eq!(p.duplicate_radius, 1.5);
+        assert!(corners_args(&["--duplicate-radius", "-1"]).is_err());
     }
 
     #[test]

@@ -115,6 +115,7 @@ fn tiled_moments_and_cursor_gathering_give_the_windows_of_a_direct_scan() {
     let p = Params {
         max_coherence: 1.0,
         first_fit_slack: 0.0,
+        duplicate_radius: 0.0,
         ..Params::default()
     };
     let edges = edge_map(&Gray::new(w, h, data), p.window, p.sigma, p.subpixel);
@@ -211,6 +212,7 @@ fn the_first_fit_gate_only_removes_candidates() {
     let img = Gray::new(w, h, data);
     let plain = Params {
         first_fit_slack: 0.0,
+        duplicate_radius: 0.0,
         ..Params::default()
     };
     let edges = edge_map(&img, plain.window, plain.sigma, plain.subpixel);
@@ -239,6 +241,49 @@ fn the_first_fit_gate_only_removes_candidates() {
 }
 
 #[test]
+fn the_duplicate_skip_removes_only_repeats_of_found_candidates() {
+    // Two overlapping squares: L-corners and T-junctions, each seen by many edge points.
+    let (w, h) = (150usize, 90usize);
+    let data = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let a = (13..60).contains(&x) && (12..55).contains(&y);
+            let b = (38..120).contains(&x) && (30..78).contains(&y);
+            40.0 + 90.0 * a as u8 as f32 + 70.0 * b as u8 as f32
+        })
+        .collect();
+    let plain = Params {
+        duplicate_radius: 0.0,
+        ..Params::default()
+    };
+    let edges = edge_map(&Gray::new(w, h, data), plain.window, plain.sigma, plain.subpixel);
+    let all = candidates(&edges, &plain);
+    assert!(all.len() > 20, "{} candidates", all.len());
+    let radius = 1.5;
+    let fewer = candidates(
+        &edges,
+        &Params {
+            duplicate_radius: radius,
+            ..plain.clone()
+        },
+    );
+    assert!(fewer.len() < all.len(), "nothing was skipped");
+    for c in &fewer {
+        assert!(all.contains(c), "{c:?} is not a plain candidate");
+    }
+    // Every corner the suppression keeps without the skip still has a candidate nearby.
+    let kept = suppress(fewer.clone(), plain.window);
+    for c in suppress(all, plain.window) {
+        assert!(
+            kept.iter().any(|k| (k.x - c.x).hypot(k.y - c.y) < 2.0 * radius),
+            "lost the corner at ({}, {})",
+            c.x,
+            c.y
+        );
+    }
+}
+
+#[test]
 fn suppression_keeps_the_smallest_delta() {
     let mk = |x: f64, delta: f64| Corner {
         x,
@@ -257,6 +302,11 @@ fn suppression_keeps_the_smallest_delta() {
 #[test]
 fn bad_params_are_reported() {
     let img = square(16, 4, 10);
+    let p = Params {
+        duplicate_radius: -1.0,
+        ..Params::default()
+    };
+    assert!(p.validate().is_err());
     let p = Params {
         window: 4,
         ..Params::default()
