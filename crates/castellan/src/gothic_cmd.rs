@@ -2,11 +2,13 @@
 //! groups, nesting; dissertation §4.1–4.2), MASONRY.png (stones/mortar), an overlay and a
 //! block-level glTF model (wall, elements, extruded stones).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
+use facade::classify::{ClassifyParams, Training};
+use facade::gothic::classes::ClassMapParams;
 use facade::gothic::hatching::HatchParams;
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
@@ -26,8 +28,23 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         hatching: args.hatching.then(HatchParams::default),
         ..GothicParams::default()
     };
+    let training = args
+        .training
+        .as_ref()
+        .map(|t| read_training(t, &img))
+        .transpose()?;
     let started = Instant::now();
-    let est = facade::gothic::estimate(&img, &params).map_err(|e| anyhow!("{file}: {e}"))?;
+    let est = match &training {
+        Some(t) => facade::gothic::classes::estimate_with_classes(
+            &img,
+            t,
+            &params,
+            &ClassifyParams::default(),
+            &ClassMapParams::default(),
+        ),
+        None => facade::gothic::estimate(&img, &params),
+    }
+    .map_err(|e| anyhow!("{file}: {e}"))?;
     let masonry = (args.masonry.is_some() || args.model.is_some())
         .then(|| masonry::segment(&img, &est, &MasonryParams::default()));
     let elapsed = started.elapsed();
@@ -84,6 +101,19 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// TRAINING.json (as `castellan facade --training` reads it), checked against the image: window
+/// and wall boxes are required.
+fn read_training(path: &Path, img: &RgbImage) -> Result<Training> {
+    let tfile = path.display().to_string();
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {tfile}"))?;
+    let training: Training =
+        serde_json::from_str(&text).with_context(|| format!("{tfile}: not a TRAINING.json"))?;
+    training
+        .boxes(img.width() as usize, img.height() as usize)
+        .map_err(|e| anyhow!("{tfile}: {e}"))?;
+    Ok(training)
 }
 
 /// The image with mortar tinted (when segmented) and every element's contour drawn: top-level
@@ -144,6 +174,11 @@ pub struct GothicArgs {
     /// edges, so hatched openings show their outline (off for photographs).
     #[arg(long)]
     pub hatching: bool,
+    /// Photographs: training boxes per class, as for `castellan facade`. The window class of
+    /// ch. 3 then replaces the image edges as the source of the distance transform and seeds,
+    /// so glazing bars, frames and shutters inside windows no longer hold the contours.
+    #[arg(long, value_name = "TRAINING.json")]
+    pub training: Option<PathBuf>,
 }
 
 fn parse_positive(s: &str) -> Result<f64, String> {
@@ -186,6 +221,14 @@ mod flag_tests {
         assert_eq!((a.masonry, a.overlay, a.model), (None, None, None));
         assert!(!a.hatching);
         assert!(gothic_args(&["--hatching"]).unwrap().hatching);
+        assert_eq!(a.training, None);
+    }
+
+    #[test]
+    fn gothic_training_flag() {
+        let a = gothic_args(&["--training", "t.json"]).unwrap();
+        assert_eq!(a.training, Some(PathBuf::from("t.json")));
+        assert!(gothic_args(&["--training"]).is_err());
     }
 
     #[test]
@@ -218,5 +261,89 @@ mod flag_tests {
         ] {
             assert!(gothic_args(&bad).is_err(), "{bad:?}");
         }
+    }
+}
+
+#[cfg(test)]
+mod training_tests {
+    use image::{Rgb, RgbImage};
+
+    use super::{GothicArgs, run};
+
+    /// Runs `castellan gothic` with TRAINING.json text `training`; the error text and whether
+    /// GOTHIC.json when it was written.
+    fn run_with(training: Option<&str>) -> (anyhow::Result<()>, Option<String>) {
+        let dir = tempfile::tempdir().unwrap();
+        let image = dir.path().join("g.png");
+        let mut img = RgbImage::from_pixel(80, 60, Rgb([190, 140, 100]));
+        for y in 15..45 {
+            for x in 25..55 {
+                img.put_pixel(x, y, Rgb([30, 40, 60]));
+            }
+        }
+        img.save(&image).unwrap();
+        let tfile = dir.path().join("t.json");
+        if let Some(t) = training {
+            std::fs::write(&tfile, t).unwrap();
+        }
+        let output = dir.path().join("g.json");
+        let args = GothicArgs {
+            image,
+            output: output.clone(),
+            masonry: None,
+            overlay: None,
+            model: None,
+            depth: 0.05,
+            px_per_unit: 100.0,
+            min_radius: 8.0,
+            hatching: false,
+            training: Some(tfile),
+        };
+        let r = run(&args);
+        (r, std::fs::read_to_string(&output).ok())
+    }
+
+    #[test]
+    fn training_without_wall_boxes_is_refused_naming_the_file() {
+        let (r, wrote) = run_with(Some(r#"{"classes": {"window": [[30, 20, 40, 30]]}}"#));
+        let err = format!("{:#}", r.unwrap_err());
+        assert!(
+            err.contains("t.json") && err.contains("no wall boxes"),
+            "{err}"
+        );
+        assert!(wrote.is_none());
+    }
+
+    #[test]
+    fn missing_or_malformed_training_is_refused() {
+        let (r, wrote) = run_with(None);
+        let err = format!("{:#}", r.unwrap_err());
+        assert!(
+            err.contains("cannot read") && err.contains("t.json"),
+            "{err}"
+        );
+        assert!(wrote.is_none());
+        let (r, wrote) = run_with(Some("{\"classes\": 3}"));
+        assert!(format!("{:#}", r.unwrap_err()).contains("not a TRAINING.json"));
+        assert!(wrote.is_none());
+    }
+
+    #[test]
+    fn class_driven_run_finds_the_dark_window() {
+        let (r, wrote) = run_with(Some(
+            r#"{"classes": {"window": [[30, 20, 40, 30]], "wall": [[2, 2, 12, 12], [60, 45, 75, 55]]}}"#,
+        ));
+        r.unwrap();
+        let doc: serde_json::Value = serde_json::from_str(&wrote.unwrap()).unwrap();
+        let e = &doc["elements"][0];
+        let (x0, y0, w) = (
+            e["x0"].as_f64().unwrap(),
+            e["y0"].as_f64().unwrap(),
+            e["w"].as_f64().unwrap(),
+        );
+        assert!(
+            (x0 - 24.5).abs() < 2.0 && (y0 - 44.5).abs() < 2.0 && (w - 30.0).abs() < 2.0,
+            "{doc}"
+        );
     }
 }

@@ -145,10 +145,19 @@ pub fn starts(dt: &DistanceMap, seeds: &[Seed]) -> Vec<Theta> {
 
 /// Maximises from every start and keeps the significant, plausible results.
 pub fn detect(dt: &DistanceMap, params: &GothicParams) -> Vec<Candidate> {
-    let bounds = params.bounds();
     let seeds = seeds(dt, params.min_seed_radius, params.max_seeds);
-    let starts = starts(dt, &seeds);
-    let mut out: Vec<Candidate> = rayon_map(&starts, |start| {
+    detect_from_starts(dt, &starts(dt, &seeds), params)
+}
+
+/// [`detect`] from given first shapes (the class-driven mode seeds one per window blob and
+/// adds rectangles).
+pub fn detect_from_starts(
+    dt: &DistanceMap,
+    starts: &[Theta],
+    params: &GothicParams,
+) -> Vec<Candidate> {
+    let bounds = params.bounds();
+    let mut out: Vec<Candidate> = rayon_map(starts, |start| {
         let theta = maximise(dt, *start, params.step, bounds, params.max_iters);
         let f = fit(dt, &theta, params.step);
         let ok = plausible(&theta, bounds, dt.width, dt.height) && significant(&f, params);

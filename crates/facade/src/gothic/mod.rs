@@ -6,6 +6,8 @@
 //! - [`element`]: Θ, the constraint points of eq. 4.1 and the contour sampled at sub-pixel
 //!   arc-length steps.
 //! - [`likelihood`]: Prewitt edges (no linking) → distance transform D → ∮ D ds (eq. 4.2).
+//! - [`classes`]: optional, for photographs (departure from §4.2): D and seeds from the ch. 3
+//!   window class instead of the image edges.
 //! - [`detect`]: seeds at peaks of D, conjugate-gradient MLE ([`optimise`], `argmin`),
 //!   significance test, duplicate suppression.
 //! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions).
@@ -31,6 +33,7 @@
 //!
 //! GOTHIC.json is [`GothicEstimate`] serialised (ARCHITECTURE.md contract).
 
+pub mod classes;
 pub mod detect;
 pub mod dual;
 pub mod element;
@@ -181,11 +184,16 @@ pub const MIN_SIDE: u32 = 16;
 
 /// Edges and distance transform of §4.2 for an image.
 pub fn distance_map(img: &RgbImage, params: &GothicParams) -> DistanceMap {
+    DistanceMap::of_edges(&image_edges(img, params))
+}
+
+/// The Prewitt edge map of §4.2 (after hatching suppression when asked).
+pub fn image_edges(img: &RgbImage, params: &GothicParams) -> image::GrayImage {
     let mut gray = image::imageops::grayscale(img);
     if let Some(h) = &params.hatching {
         gray = hatching::suppress(&gray, params.edge_threshold, h).0;
     }
-    DistanceMap::of_edges(&likelihood::prewitt_edges(&gray, params.edge_threshold))
+    likelihood::prewitt_edges(&gray, params.edge_threshold)
 }
 
 /// The whole element pipeline of §4.2: detection, grouping, nesting.
