@@ -17,6 +17,9 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         thin_lines: args
             .thin_lines
             .unwrap_or(plan::Options::default().thin_lines),
+        hatching: args.hatching,
+        hachures: args.hachures,
+        dashes: !args.no_dashes,
         ..Default::default()
     };
     let image = match (&args.batch, &args.image) {
@@ -136,6 +139,18 @@ pub struct PlanArgs {
     /// default, see docs/plan.md).
     #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
     pub thin_lines: Option<f64>,
+    /// Fill hatched walls: paper slivers between parallel hatch strokes become wall (off by
+    /// default, see docs/plan.md).
+    #[arg(long)]
+    pub hatching: bool,
+    /// Remove hachured slopes and moats: bands of short parallel thin strokes (off by
+    /// default, see docs/plan.md).
+    #[arg(long)]
+    pub hachures: bool,
+    /// Leave dotted and dashed lines as specks (by default chains of three or more
+    /// collinear, evenly spaced dashes or dots are joined into a line; see docs/plan.md).
+    #[arg(long)]
+    pub no_dashes: bool,
 }
 
 /// Metres per pixel from the bar drawn on the plan, said to be `metres` long; prints `label`
@@ -276,6 +291,16 @@ mod flag_tests {
         assert!(plan_args(&["--thin-lines", "1.5"]).is_err());
         assert!(plan_args(&["--thin-lines", "-0.1"]).is_err());
         assert!(plan_args(&["--thin-lines", "nan"]).is_err());
+    }
+
+    #[test]
+    fn plan_clean_up_flags_are_off_unless_given() {
+        let a = plan_args(&[]).unwrap();
+        assert!(!a.hatching && !a.hachures && !a.no_dashes);
+        let a = plan_args(&["--hatching", "--hachures", "--no-dashes"]).unwrap();
+        assert!(a.hatching && a.hachures && a.no_dashes);
+        assert!(plan_args(&["--no-dashes", "yes"]).is_err());
+        assert!(plan_args(&["--dashes"]).is_err());
     }
 
     #[test]

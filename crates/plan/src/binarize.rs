@@ -24,6 +24,27 @@ pub struct PreStats {
     pub dropped_marks: usize,
     /// Ink pixels removed as thin lines (vault ribs, hachures; [`drop_thin_lines`]).
     pub thin_line_pixels: usize,
+    /// Paper pixels filled between hatch strokes ([`crate::hatching::fill_hatching`]).
+    pub hatching_pixels: usize,
+    /// Ink pixels removed as hachures ([`crate::hachures::drop_hachures`]).
+    pub hachure_pixels: usize,
+    /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
+    pub dash_links: usize,
+}
+
+/// The clean-up steps added to §5.1.2 for real drawings, run on the thresholded drawing
+/// before step (2), in this order: hatching filled, hachures removed, dashes linked, vault
+/// ribs removed.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Cleanup {
+    /// Fraction of the wall thickness below which vault ribs go ([`drop_thin_lines`]; 0 = off).
+    pub thin_lines: f64,
+    /// Fill the paper between hatch strokes ([`crate::hatching::fill_hatching`]).
+    pub hatching: bool,
+    /// Remove bands of hachures ([`crate::hachures::drop_hachures`]).
+    pub hachures: bool,
+    /// Join dotted and dashed lines ([`crate::dashes::link_dashes`]).
+    pub dashes: bool,
 }
 
 /// Otsu's threshold on the grey image. Departure from §5.1.2 ("a simple threshold"): scans vary,
@@ -157,6 +178,21 @@ pub fn preprocess_with(
     min_region: f64,
     thin_line_fraction: f64,
 ) -> (GrayImage, PreStats) {
+    let cleanup = Cleanup {
+        thin_lines: thin_line_fraction,
+        ..Default::default()
+    };
+    preprocess_clean(grey, min_region, &cleanup)
+}
+
+/// [`preprocess`] with the clean-up steps of `cleanup` run first. They come before step (2)
+/// because each works on what steps (2)–(5) destroy: hatch gaps too large to be filled as
+/// specks, hachures the opening keeps, dashes removed as specks, rib wedges filled as specks.
+pub fn preprocess_clean(
+    grey: &GrayImage,
+    min_region: f64,
+    cleanup: &Cleanup,
+) -> (GrayImage, PreStats) {
     let level = threshold_level(grey);
     let mut img = binarize(grey, level);
     let total = (img.width() as usize) * (img.height() as usize);
@@ -165,12 +201,37 @@ pub fn preprocess_with(
         threshold: level,
         ..Default::default()
     };
-    if thin_line_fraction > 0.0 {
+    let long = img.width().max(img.height());
+    let t = if cleanup.thin_lines > 0.0 || cleanup.hachures || cleanup.dashes {
+        wall_thickness(&open_close(&img))
+    } else {
+        0.0
+    };
+    if cleanup.hatching {
+        // Hatch gaps are a few pixels wide whatever the walls' thickness (which the hatching
+        // hides from `wall_thickness`), so the limit follows the drawing's size: 3 px on an
+        // enlarged book plan, 6 px on a 2400-px scan.
+        let max_inset = (long / 400).clamp(2, 6) as u8;
+        stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, max_inset);
+    }
+    if cleanup.hachures {
+        let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;
+        stats.hachure_pixels =
+            crate::hachures::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
+    }
+    if cleanup.dashes {
+        stats.dash_links = crate::dashes::link_dashes(
+            &mut img,
+            min,
+            (3.0 * t).max(8.0),
+            (0.8 * t).max(3.0),
+            3.0,
+        );
+    }
+    if cleanup.thin_lines > 0.0 {
         // Before step (2): the wedges a rib network cuts a room into are small enough to be
         // filled as specks, which would make the room solid wall.
-        let t = wall_thickness(&open_close(&img));
-        let radius = (t * thin_line_fraction).floor().clamp(0.0, 8.0) as u8;
-        let long = img.width().max(img.height());
+        let radius = (t * cleanup.thin_lines).floor().clamp(0.0, 8.0) as u8;
         let door = (t / 3.0).ceil().min((long / 150).clamp(1, 12) as f64) as u8;
         stats.thin_line_pixels =
             drop_thin_lines(&mut img, radius, door, std::f64::consts::PI * t * t);
