@@ -31,7 +31,12 @@ fn cmp_truth(path: &Path) -> Result<(Vec<u8>, usize, usize), String> {
     ];
     let labels = img
         .pixels()
-        .map(|p| palette.iter().find(|(c, _)| *c == p.0).map_or(IGNORE, |(_, l)| *l))
+        .map(|p| {
+            palette
+                .iter()
+                .find(|(c, _)| *c == p.0)
+                .map_or(IGNORE, |(_, l)| *l)
+        })
         .collect();
     Ok((labels, img.width() as usize, img.height() as usize))
 }

@@ -23,7 +23,11 @@ fn photographed_facade(seed: u64) -> (RgbImage, Vec<u8>, Vec<Theta>) {
             let course = y / 11;
             let shift = if course % 2 == 0 { 0 } else { 12 };
             let mortar = y % 11 < 2 || (x + shift) % 24 < 2;
-            let base = if mortar { [200i32, 190, 175] } else { [165, 80, 55] };
+            let base = if mortar {
+                [200i32, 190, 175]
+            } else {
+                [165, 80, 55]
+            };
             let n = rng.random_range(-18i32..=18);
             img.put_pixel(x, y, Rgb(base.map(|c| (c + n).clamp(0, 255) as u8)));
         }
@@ -104,9 +108,17 @@ fn the_window_class_finds_every_window_within_three_pixels() {
     let on_windows = est
         .elements
         .iter()
-        .filter(|e| windows.iter().any(|t| t.contains(e.x0 + e.w / 2.0, e.y0 - 1.0)))
+        .filter(|e| {
+            windows
+                .iter()
+                .any(|t| t.contains(e.x0 + e.w / 2.0, e.y0 - 1.0))
+        })
         .count();
-    assert_eq!(on_windows, est.elements.len(), "every element is on a window");
+    assert_eq!(
+        on_windows,
+        est.elements.len(),
+        "every element is on a window"
+    );
     assert_eq!(est.elements.len(), 8);
 }
 

@@ -220,13 +220,8 @@ pub fn preprocess_clean(
             crate::hachures::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
     }
     if cleanup.dashes {
-        stats.dash_links = crate::dashes::link_dashes(
-            &mut img,
-            min,
-            (3.0 * t).max(8.0),
-            (0.8 * t).max(3.0),
-            3.0,
-        );
+        stats.dash_links =
+            crate::dashes::link_dashes(&mut img, min, (3.0 * t).max(8.0), (0.8 * t).max(3.0), 3.0);
     }
     if cleanup.thin_lines > 0.0 {
         // Before step (2): the wedges a rib network cuts a room into are small enough to be

@@ -142,7 +142,11 @@ mod tests {
             let dotted = (100..102).contains(&x) && (10..70).contains(&y) && y % 6 < 2;
             let letters = (50..62).contains(&y) && (10..74).contains(&x) && (x - 10) % 16 < 12;
             let stray = (70..72).contains(&y) && ((20..26).contains(&x) || (30..36).contains(&x));
-            Luma([if dashed || dotted || letters || stray { 255 } else { 0 }])
+            Luma([if dashed || dotted || letters || stray {
+                255
+            } else {
+                0
+            }])
         })
     }
 

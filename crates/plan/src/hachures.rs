@@ -140,12 +140,21 @@ mod tests {
         // 3-px strokes (the enlarged 4-bit scans draw hachures 2–4 px wide) survive §5.1.2's
         // 3 × 3 opening, so without the step the band would become a wall.
         let img = GrayImage::from_fn(60, 40, |x, y| {
-            Luma([if (10..25).contains(&y) && (6..54).contains(&x) && x % 6 < 3 { 255 } else { 0 }])
+            Luma([
+                if (10..25).contains(&y) && (6..54).contains(&x) && x % 6 < 3 {
+                    255
+                } else {
+                    0
+                },
+            ])
         });
         let opened = crate::binarize::open_close(&img);
         assert_eq!(opened.get_pixel(13, 15)[0], 255);
         let mut dropped = img.clone();
         assert!(drop_hachures(&mut dropped, 2, 30.0) > 0);
-        assert_eq!(crate::binarize::open_close(&dropped).get_pixel(13, 15)[0], 0);
+        assert_eq!(
+            crate::binarize::open_close(&dropped).get_pixel(13, 15)[0],
+            0
+        );
     }
 }

@@ -98,7 +98,11 @@ mod tests {
             let hatch = (21..31).contains(&y) && (10..110).contains(&x) && (x + y) % 6 == 0;
             let room = ((y == 36 || y == 56) && (30..=60).contains(&x))
                 || ((x == 30 || x == 60) && (36..=56).contains(&y));
-            Luma([if outline || ends || hatch || room { 255 } else { 0 }])
+            Luma([if outline || ends || hatch || room {
+                255
+            } else {
+                0
+            }])
         })
     }
 

@@ -79,10 +79,7 @@ pub(crate) fn strokes(c: &Components, width: usize, wanted: impl Fn(usize) -> bo
             let (l1, l2) = (half + root, (half - root).max(1.0 / 12.0));
             Stroke {
                 label: l as u32,
-                centre: [
-                    mx + f64::from(c.bbox[l][0]),
-                    my + f64::from(c.bbox[l][1]),
-                ],
+                centre: [mx + f64::from(c.bbox[l][0]), my + f64::from(c.bbox[l][1])],
                 angle: (0.5 * (2.0 * sxy).atan2(sxx - syy)).rem_euclid(std::f64::consts::PI),
                 length: (12.0 * l1).sqrt(),
                 width: (12.0 * l2).sqrt(),
@@ -151,12 +148,20 @@ mod tests {
     fn a_diagonal_bar_has_its_length_width_and_direction() {
         // A 2-px wide bar of 20 px along the diagonal x = y.
         let img = GrayImage::from_fn(30, 30, |x, y| {
-            Luma([if x < 22 && (x as i32 - y as i32).abs() <= 0 { 255 } else { 0 }])
+            Luma([if x < 22 && (x as i32 - y as i32).abs() <= 0 {
+                255
+            } else {
+                0
+            }])
         });
         let c = components(&img, 255, Connectivity::Eight);
         let s = strokes(&c, 30, |_| true);
         assert_eq!(s.len(), 1);
-        assert!((s[0].angle - std::f64::consts::FRAC_PI_4).abs() < 0.05, "{:?}", s[0]);
+        assert!(
+            (s[0].angle - std::f64::consts::FRAC_PI_4).abs() < 0.05,
+            "{:?}",
+            s[0]
+        );
         assert!((s[0].length - 22.0 * 2f64.sqrt()).abs() < 3.0, "{:?}", s[0]);
         assert!(s[0].elongation() > 10.0);
         assert!(angle_between(0.1, std::f64::consts::PI - 0.1) < 0.21);

@@ -256,7 +256,12 @@ fn the_duplicate_skip_removes_only_repeats_of_found_candidates() {
         duplicate_radius: 0.0,
         ..Params::default()
     };
-    let edges = edge_map(&Gray::new(w, h, data), plain.window, plain.sigma, plain.subpixel);
+    let edges = edge_map(
+        &Gray::new(w, h, data),
+        plain.window,
+        plain.sigma,
+        plain.subpixel,
+    );
     let all = candidates(&edges, &plain);
     assert!(all.len() > 20, "{} candidates", all.len());
     let radius = 1.5;
@@ -275,7 +280,8 @@ fn the_duplicate_skip_removes_only_repeats_of_found_candidates() {
     let kept = suppress(fewer.clone(), plain.window);
     for c in suppress(all, plain.window) {
         assert!(
-            kept.iter().any(|k| (k.x - c.x).hypot(k.y - c.y) < 2.0 * radius),
+            kept.iter()
+                .any(|k| (k.x - c.x).hypot(k.y - c.y) < 2.0 * radius),
             "lost the corner at ({}, {})",
             c.x,
             c.y
