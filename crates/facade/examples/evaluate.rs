@@ -18,30 +18,7 @@ fn data() -> PathBuf {
 /// CMP masks are palette PNGs; the image crate expands them to RGB, so map the palette back.
 fn cmp_truth(path: &Path) -> Option<Vec<u8>> {
     let img = image::open(path).ok()?.to_rgb8();
-    let palette: [([u8; 3], u8); 12] = [
-        ([0, 0, 170], 0),
-        ([0, 0, 255], 1),
-        ([0, 85, 255], 2),
-        ([0, 170, 255], 1),
-        ([0, 255, 255], 1),
-        ([85, 255, 170], 1),
-        ([170, 255, 85], 1),
-        ([255, 255, 0], 1),
-        ([255, 170, 0], 1),
-        ([255, 85, 0], 1),
-        ([255, 0, 0], 1),
-        ([170, 0, 0], 1),
-    ];
-    Some(
-        img.pixels()
-            .map(|p| {
-                palette
-                    .iter()
-                    .find(|(c, _)| *c == p.0)
-                    .map_or(IGNORE, |(_, l)| *l)
-            })
-            .collect(),
-    )
+    Some(facade::eval::cmp_classes(&img))
 }
 
 /// Art-deco labels: Door 0, Shop 1, Balcony 2, Window 3, Wall 4, Sky 5, Roof 6, -1 void.

@@ -15,29 +15,7 @@ fn cmp_truth(path: &Path) -> Result<(Vec<u8>, usize, usize), String> {
     let img = image::open(path)
         .map_err(|e| format!("{}: {e}", path.display()))?
         .to_rgb8();
-    let palette: [([u8; 3], u8); 12] = [
-        ([0, 0, 170], 0),
-        ([0, 0, 255], 1),
-        ([0, 85, 255], 2),
-        ([0, 170, 255], 1),
-        ([0, 255, 255], 1),
-        ([85, 255, 170], 1),
-        ([170, 255, 85], 1),
-        ([255, 255, 0], 1),
-        ([255, 170, 0], 1),
-        ([255, 85, 0], 1),
-        ([255, 0, 0], 1),
-        ([170, 0, 0], 1),
-    ];
-    let labels = img
-        .pixels()
-        .map(|p| {
-            palette
-                .iter()
-                .find(|(c, _)| *c == p.0)
-                .map_or(IGNORE, |(_, l)| *l)
-        })
-        .collect();
+    let labels = facade::eval::cmp_classes(&img);
     Ok((labels, img.width() as usize, img.height() as usize))
 }
 

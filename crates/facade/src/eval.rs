@@ -13,6 +13,35 @@ use crate::search::Integral;
 /// Ground-truth value of pixels left out of every measure (void / unknown).
 pub const IGNORE: u8 = 255;
 
+/// CMP label colours → 0 background, 1 wall, 2 window (the masks are palette PNGs the image
+/// crate expands to RGB; every class but background and window counts as wall).
+pub const CMP_PALETTE: [([u8; 3], u8); 12] = [
+    ([0, 0, 170], 0),
+    ([0, 0, 255], 1),
+    ([0, 85, 255], 2),
+    ([0, 170, 255], 1),
+    ([0, 255, 255], 1),
+    ([85, 255, 170], 1),
+    ([170, 255, 85], 1),
+    ([255, 255, 0], 1),
+    ([255, 170, 0], 1),
+    ([255, 85, 0], 1),
+    ([255, 0, 0], 1),
+    ([170, 0, 0], 1),
+];
+
+/// A CMP label image as ground-truth classes; colours outside [`CMP_PALETTE`] are [`IGNORE`].
+pub fn cmp_classes(img: &image::RgbImage) -> Vec<u8> {
+    img.pixels()
+        .map(|p| {
+            CMP_PALETTE
+                .iter()
+                .find(|(c, _)| *c == p.0)
+                .map_or(IGNORE, |(_, l)| *l)
+        })
+        .collect()
+}
+
 /// Fraction of (non-ignored) pixels whose labels agree.
 pub fn pixel_accuracy(pred: &[u8], truth: &[u8]) -> f64 {
     let (mut same, mut n) = (0usize, 0usize);

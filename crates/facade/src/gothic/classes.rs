@@ -12,7 +12,7 @@ use image::{GrayImage, Luma, RgbImage};
 use super::detect::{self, Seed};
 use super::element::Theta;
 use super::likelihood::DistanceMap;
-use super::{GothicEstimate, GothicParams, MIN_SIDE, organise};
+use super::{GothicEstimate, GothicParams, organise};
 use crate::classify::{self, Class, ClassifyParams, LogLikelihoods, Training};
 use crate::{FacadeError, Result};
 
@@ -254,14 +254,7 @@ pub fn estimate_with_classes(
     classify_params: &ClassifyParams,
     p: &ClassMapParams,
 ) -> Result<GothicEstimate> {
-    let (w, h) = img.dimensions();
-    if w < MIN_SIDE || h < MIN_SIDE {
-        return Err(FacadeError::ImageTooSmall {
-            width: w,
-            height: h,
-            need: format!("Gothic element detection needs at least {MIN_SIDE}x{MIN_SIDE} pixels"),
-        });
-    }
+    super::check_size(img)?;
     let ll = classify::classify(img, training, classify_params)?;
     let map = window_map(&ll, p)?;
     Ok(estimate_from_map(img, &map, params, p))

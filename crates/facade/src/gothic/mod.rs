@@ -196,8 +196,8 @@ pub fn image_edges(img: &RgbImage, params: &GothicParams) -> image::GrayImage {
     likelihood::prewitt_edges(&gray, params.edge_threshold)
 }
 
-/// The whole element pipeline of §4.2: detection, grouping, nesting.
-pub fn estimate(img: &RgbImage, params: &GothicParams) -> Result<GothicEstimate> {
+/// Refuses images too small for an element (both entry points).
+pub(crate) fn check_size(img: &RgbImage) -> Result<()> {
     let (w, h) = img.dimensions();
     if w < MIN_SIDE || h < MIN_SIDE {
         return Err(FacadeError::ImageTooSmall {
@@ -206,6 +206,12 @@ pub fn estimate(img: &RgbImage, params: &GothicParams) -> Result<GothicEstimate>
             need: format!("Gothic element detection needs at least {MIN_SIDE}x{MIN_SIDE} pixels"),
         });
     }
+    Ok(())
+}
+
+/// The whole element pipeline of §4.2: detection, grouping, nesting.
+pub fn estimate(img: &RgbImage, params: &GothicParams) -> Result<GothicEstimate> {
+    check_size(img)?;
     let dt = distance_map(img, params);
     let found = detect::detect(&dt, params);
     Ok(organise(&dt, found, params))
