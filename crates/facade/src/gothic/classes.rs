@@ -86,27 +86,15 @@ pub fn window_map(ll: &LogLikelihoods, p: &ClassMapParams) -> Result<WindowMap> 
     })
 }
 
-/// Mean over the (2r + 1)² box around each pixel, clipped at the image border.
+/// Mean over the (2r + 1)² box around each pixel, clipped at the image border: the box sums
+/// of [`super::hatching::box_sums`] over the clipped box's area.
 fn box_mean(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
-    let mut sum = vec![0f64; (w + 1) * (h + 1)];
-    for y in 0..h {
-        let mut row = 0.0;
-        for x in 0..w {
-            row += v[y * w + x];
-            sum[(y + 1) * (w + 1) + x + 1] = sum[y * (w + 1) + x + 1] + row;
-        }
-    }
-    let mut out = vec![0f64; w * h];
-    for y in 0..h {
-        let (y0, y1) = (y.saturating_sub(r), (y + r + 1).min(h));
-        for x in 0..w {
-            let (x0, x1) = (x.saturating_sub(r), (x + r + 1).min(w));
-            let s = sum[y1 * (w + 1) + x1] - sum[y0 * (w + 1) + x1] - sum[y1 * (w + 1) + x0]
-                + sum[y0 * (w + 1) + x0];
-            out[y * w + x] = s / ((x1 - x0) * (y1 - y0)) as f64;
-        }
-    }
-    out
+    let span = |c: usize, n: usize| (c + r + 1).min(n) - c.saturating_sub(r);
+    super::hatching::box_sums(v, w, h, r)
+        .into_iter()
+        .enumerate()
+        .map(|(i, s)| s / (span(i % w, w) * span(i / w, h)) as f64)
+        .collect()
 }
 
 impl WindowMap {

@@ -99,7 +99,7 @@ pub fn suppress(gray: &GrayImage, edge_threshold: f64, p: &HatchParams) -> (Gray
 
 /// Sum of `v` over the (2r + 1)² window around every pixel (clipped at the borders), by a
 /// summed-area table.
-fn box_sums(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
+pub(super) fn box_sums(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
     let mut sat = vec![0.0; (w + 1) * (h + 1)];
     for y in 0..h {
         let mut row = 0.0;

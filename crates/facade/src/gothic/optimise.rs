@@ -278,6 +278,19 @@ mod tests {
         img
     }
 
+    /// A pointed arch drawn dark on light, and the distance map of its Prewitt edges.
+    fn pointed_arch() -> (Theta, DistanceMap) {
+        let truth = Theta {
+            x0: 20.0,
+            y0: 85.0,
+            h: 30.0,
+            w: 30.0,
+            v: 22.0,
+        };
+        let dt = DistanceMap::of_edges(&prewitt_edges(&draw(&truth), 0.3));
+        (truth, dt)
+    }
+
     const BOUNDS: ShapeBounds = ShapeBounds {
         min_width: 6.0,
         min_height: 6.0,
@@ -348,14 +361,7 @@ mod tests {
     /// gradient matches small central differences up to the few samples crossing a border.
     #[test]
     fn analytic_gradient_matches_central_differences_on_edges() {
-        let truth = Theta {
-            x0: 20.0,
-            y0: 85.0,
-            h: 30.0,
-            w: 30.0,
-            v: 22.0,
-        };
-        let dt = DistanceMap::of_edges(&prewitt_edges(&draw(&truth), 0.3));
+        let (_, dt) = pointed_arch();
         for p in shapes_to_test() {
             let start = shapes(&p, false)[0];
             let c = cost(&dt, &[start], false);
@@ -395,14 +401,7 @@ mod tests {
 
     #[test]
     fn cg_recovers_a_pointed_arch_from_a_rough_start() {
-        let truth = Theta {
-            x0: 20.0,
-            y0: 85.0,
-            h: 30.0,
-            w: 30.0,
-            v: 22.0,
-        };
-        let dt = DistanceMap::of_edges(&prewitt_edges(&draw(&truth), 0.3));
+        let (truth, dt) = pointed_arch();
         let start = Theta {
             x0: 24.0,
             y0: 80.0,
