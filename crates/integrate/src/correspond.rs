@@ -1,7 +1,7 @@
-//! Correspondences (§6.1.1): a plan point selects the structure whose footprint contains it;
-//! on a rectangle the façade takes the nearest side, on a circle the arc between the two
-//! points (counter-clockwise on the drawing). A photo point selects the façade whose
-//! rectified boundary contains it.
+//! Correspondences (§6.1.1): a plan point selects the structure whose footprint contains it
+//! (towers first); on a rectangle the façade takes the nearest side, on a circle the arc
+//! between the two points (counter-clockwise on the drawing). A photo point selects the façade
+//! whose rectified boundary contains it.
 
 use std::f64::consts::{PI, TAU};
 
@@ -49,13 +49,19 @@ pub fn contains(f: &Footprint, p: [f64; 2]) -> bool {
     }
 }
 
-/// The smallest structure containing `p` (so a tower wins over the curtain wall it sits on).
+/// The smallest tower containing `p`, else the smallest structure: a tower wins over the
+/// curtain wall it sits on, even where a segment of the curtain is the smaller (a small tower
+/// drawn solid on the curtain's line, `Kind::SolidCylindrical`).
 pub fn structure_at(structures: &[Structure], p: [f64; 2]) -> Option<usize> {
     structures
         .iter()
         .enumerate()
         .filter(|(_, s)| contains(&s.footprint, p))
-        .min_by(|a, b| area(&a.1.footprint).total_cmp(&area(&b.1.footprint)))
+        .min_by(|a, b| {
+            (!a.1.is_tower())
+                .cmp(&!b.1.is_tower())
+                .then(area(&a.1.footprint).total_cmp(&area(&b.1.footprint)))
+        })
         .map(|(i, _)| i)
 }
 
@@ -209,5 +215,38 @@ mod tests {
         });
         assert_eq!(structure_at(&[big.clone(), small], [101.0, 50.0]), Some(1));
         assert_eq!(structure_at(&[big], [0.0, 0.0]), None);
+    }
+
+    #[test]
+    fn a_solid_tower_wins_over_the_smaller_curtain_segment_it_sits_on() {
+        use crate::estimate::Kind;
+        let segment = Structure {
+            id: "wall1".into(),
+            label: "castle_outer_wall".into(),
+            kind: Kind::Solid,
+            footprint: Footprint::Rectangle {
+                center: [0.0, 0.0],
+                size: [6.0, 2.0],
+                rotation: 0.0,
+            },
+            height: 12.0,
+            wall_thickness: 2.0,
+            facades: vec![],
+            children: vec![],
+            provenance: Default::default(),
+        };
+        let tower = Structure {
+            id: "tower1".into(),
+            label: "tower_wall".into(),
+            kind: Kind::SolidCylindrical,
+            footprint: Footprint::Circle {
+                center: [0.0, 1.0],
+                radius: 3.0,
+            },
+            ..segment.clone()
+        };
+        assert!(area(&segment.footprint) < area(&tower.footprint));
+        assert_eq!(structure_at(&[segment.clone(), tower], [0.5, 0.5]), Some(1));
+        assert_eq!(structure_at(&[segment], [0.5, 0.5]), Some(0));
     }
 }

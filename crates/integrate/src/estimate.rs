@@ -59,6 +59,9 @@ pub enum Kind {
     HollowCylindrical,
     /// Wall faces and a fill (curtain walls).
     Solid,
+    /// A wall ring round a fill: a round tower drawn solid, with no room (the plan's bulge
+    /// towers, `plan::bulges`).
+    SolidCylindrical,
 }
 
 /// A footprint in the plan's frame (x, z) = plan pixel (x, y) × scale.
@@ -162,6 +165,14 @@ pub struct Provenance {
     /// The step's fit error where it has one (pixels of its image).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fit_error: Option<f64>,
+}
+
+impl Structure {
+    /// A tower: a tower room's structure (round or square) or a tower drawn solid as a bulge
+    /// of the curtain.
+    pub fn is_tower(&self) -> bool {
+        self.label == "tower_room" || self.kind == Kind::SolidCylindrical
+    }
 }
 
 impl Provenance {

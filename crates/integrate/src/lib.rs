@@ -504,7 +504,7 @@ fn floors_of(p: &FacadeParams, k: f64) -> Vec<FloorEstimate> {
 fn replace_wall(kind: Kind, id: &str, children: &mut Vec<Element>, f: &MappedFacade, k: usize) {
     let wall_name = match kind {
         Kind::HollowRectangular => format!("{id}Wall_{}", f.side),
-        Kind::HollowCylindrical => format!("{id}Wall"),
+        Kind::HollowCylindrical | Kind::SolidCylindrical => format!("{id}Wall"),
         Kind::Solid => format!("{id}Face_field"),
     };
     let facade = Element {

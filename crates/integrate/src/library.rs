@@ -2,10 +2,14 @@
 //! `round_tower.vsg`, `curtain_wall.vsg`, … wherever the binary runs.
 
 /// Every library program by file name.
-pub const FILES: [(&str, &str); 6] = [
+pub const FILES: [(&str, &str); 7] = [
     (
         "round_tower.vsg",
         include_str!("../../../library/round_tower.vsg"),
+    ),
+    (
+        "solid_tower.vsg",
+        include_str!("../../../library/solid_tower.vsg"),
     ),
     (
         "square_tower.vsg",

@@ -2,7 +2,8 @@
 //! 7.3): named parameter arrays with comments tracing each value to its source, mass models in
 //! the axiom, walls and interiors split from them, façade floors and windows split from the
 //! walls they replace (figure 6.3). Structures without a façade take the medieval library's
-//! shapes: round and square towers with roofs, keeps, curtain walls with crenellations.
+//! shapes: round and square towers with roofs, solid round towers (the plan's bulge towers)
+//! with roofs, keeps, curtain walls with crenellations.
 
 use std::f64::consts::TAU;
 use std::fmt::Write;
@@ -92,6 +93,24 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         );
         let h = s.height;
         match (&s.footprint, s.kind, s.facades.is_empty()) {
+            // A tower drawn solid (a bulge of the curtain): no storeys or slits to take from a
+            // façade, only its height.
+            (Footprint::Circle { center, radius }, Kind::SolidCylindrical, _) => {
+                w.library(
+                    "solid_tower.vsg",
+                    s,
+                    *center,
+                    None,
+                    &[
+                        ("radius", *radius),
+                        ("height", h),
+                        ("wall", s.wall_thickness.min(radius * 0.5)),
+                        ("roofH", radius * 1.4),
+                        ("overhang", 0.4 * u),
+                    ],
+                    o,
+                );
+            }
             (Footprint::Circle { center, radius }, _, _) => {
                 let floors = f64::from(storeys(s, o, u));
                 let slits = s

@@ -1,7 +1,8 @@
 //! Plan shapes → structures (§6.1.3, §5.3): rooms with a circle or rectangle fit become hollow
 //! cylindrical or rectangular structures (outer footprint = the fitted wall centreline plus
-//! half the wall), and wall chains no room owns become solid wall segments. Heights are the
-//! class defaults of §5.3 until a façade says otherwise.
+//! half the wall), towers found as bulges of the curtain (`plan::bulges`, no room drawn)
+//! become solid cylindrical towers, and wall chains no room owns become solid wall segments.
+//! Heights are the class defaults of §5.3 until a façade says otherwise.
 
 use std::collections::BTreeMap;
 
@@ -10,6 +11,7 @@ use plan::extrude::{Heights, simplify};
 use plan::fit::Fit;
 use plan::label::Label;
 
+use crate::correspond::contains;
 use crate::estimate::{Element, Footprint, Kind, Provenance, Structure};
 
 /// How plan pixels become model units.
@@ -53,6 +55,10 @@ pub fn hierarchy(id: &str, kind: Kind) -> Vec<Element> {
             Element::leaf(format!("{id}Wall"), "wall"),
             Element::leaf(format!("{id}Interior"), "interior"),
         ],
+        Kind::SolidCylindrical => vec![
+            Element::leaf(format!("{id}Wall"), "wall"),
+            Element::leaf(format!("{id}Fill"), "fill"),
+        ],
         Kind::Solid => vec![
             Element::leaf(format!("{id}Face_field"), "wall"),
             Element::leaf(format!("{id}Fill"), "fill"),
@@ -61,7 +67,8 @@ pub fn hierarchy(id: &str, kind: Kind) -> Vec<Element> {
     }
 }
 
-/// Every structure of the plan, without façades.
+/// Every structure of the plan, without façades: rooms, then the bulge towers (named `tower{n}`
+/// after the tower rooms' `tower1 … tower{k}`), then the walls.
 pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure> {
     let heights = Heights::scaled(frame.units_per_metre);
     let s = frame.scale;
@@ -166,6 +173,64 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
             provenance,
         });
     }
+    let rooms = out.len();
+    let curtain_px = outer_wall_thickness(plan);
+    for (bi, b) in plan.bulge_towers.iter().enumerate() {
+        let center = [b.center[0] * s, b.center[1] * s];
+        // A bulge on a tower whose room the plan found is that tower: it is built once.
+        let built = out[..rooms]
+            .iter()
+            .any(|t| t.label == Label::TowerRoom.name() && contains(&t.footprint, center));
+        if built || b.radius <= 0.5 {
+            continue;
+        }
+        let id = next_id("tower");
+        let wall_px = curtain_px.unwrap_or(b.radius / 3.0).min(b.radius / 2.0);
+        let mut provenance = BTreeMap::new();
+        provenance.insert(
+            "footprint".to_string(),
+            Provenance::new(
+                image,
+                format!(
+                    "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge, solid"
+                ),
+                None,
+            ),
+        );
+        provenance.insert(
+            "wall_thickness".to_string(),
+            Provenance::new(
+                image,
+                match curtain_px {
+                    Some(_) => "§5.1.4 median thickness of the outer walls (the curtain the tower studs), at most half the radius; inside it, fill",
+                    None => "no outer wall: a third of the radius; inside it, fill",
+                },
+                None,
+            ),
+        );
+        provenance.insert(
+            "height".to_string(),
+            Provenance::new(
+                "default",
+                format!("§5.3 class height of {}", Label::TowerWall.name()),
+                None,
+            ),
+        );
+        out.push(Structure {
+            children: hierarchy(&id, Kind::SolidCylindrical),
+            id,
+            label: Label::TowerWall.name().to_string(),
+            kind: Kind::SolidCylindrical,
+            footprint: Footprint::Circle {
+                center,
+                radius: b.radius * s,
+            },
+            height: heights.of(Label::TowerWall),
+            wall_thickness: wall_px * s,
+            facades: Vec::new(),
+            provenance,
+        });
+    }
     for (ei, edge) in plan.edges.iter().enumerate() {
         let height = heights.of(edge.label);
         if owned[ei] || !edge.label.is_wall() || height <= 0.0 {
@@ -232,13 +297,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
 /// taken as 2.5 m (a typical curtain wall); without outer walls, 1 m is 1/100 of the castle's
 /// larger side (as `castellan plan` does). Returns the value and the assumption in words.
 pub fn assumed_units_per_metre(plan: &ParsedPlan) -> (f64, String) {
-    let mut t: Vec<f64> = plan
-        .edges
-        .iter()
-        .filter(|e| e.label == Label::CastleOuterWall && e.thickness > 0.0)
-        .map(|e| e.thickness)
-        .collect();
-    if t.is_empty() {
+    let Some(median) = outer_wall_thickness(plan) else {
         let size = f64::from(plan.width.max(plan.height));
         return (
             size / 100.0,
@@ -246,9 +305,7 @@ pub fn assumed_units_per_metre(plan: &ParsedPlan) -> (f64, String) {
                 "no drawing scale and no outer wall: 1 m taken as 1/100 of the drawing's {size} px"
             ),
         );
-    }
-    t.sort_by(f64::total_cmp);
-    let median = t[t.len() / 2];
+    };
     (
         median / 2.5,
         format!(
@@ -256,4 +313,16 @@ pub fn assumed_units_per_metre(plan: &ParsedPlan) -> (f64, String) {
             median / 2.5
         ),
     )
+}
+
+/// The outer walls' median thickness (plan pixels), if the plan has outer walls.
+fn outer_wall_thickness(plan: &ParsedPlan) -> Option<f64> {
+    let mut t: Vec<f64> = plan
+        .edges
+        .iter()
+        .filter(|e| e.label == Label::CastleOuterWall && e.thickness > 0.0)
+        .map(|e| e.thickness)
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t.get(t.len() / 2).copied()
 }

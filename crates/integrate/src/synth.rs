@@ -18,6 +18,9 @@ pub struct Castle {
     pub wall_px: f64,
     /// Round towers: centre and centreline radius (px).
     pub towers: Vec<([f64; 2], f64)>,
+    /// Towers drawn solid, with no room (discs studding the curtain, found by the plan as
+    /// bulges): centre and outer radius (px). None by default.
+    pub solid_towers: Vec<([f64; 2], f64)>,
     /// The keep: centre and centreline size (px).
     pub keep_center: [f64; 2],
     pub keep_size: [f64; 2],
@@ -38,6 +41,7 @@ impl Default for Castle {
             enclosure: [110.0, 100.0, 530.0, 400.0],
             wall_px: 10.0,
             towers: vec![([110.0, 100.0], 36.0), ([530.0, 100.0], 36.0)],
+            solid_towers: Vec::new(),
             keep_center: [320.0, 270.0],
             keep_size: [160.0, 90.0],
             keep_height: 15.0,
@@ -96,7 +100,12 @@ impl Castle {
                 let d = (x - c[0]).hypot(y - c[1]);
                 d >= r - t && d <= r + t
             });
+            let solid = self
+                .solid_towers
+                .iter()
+                .any(|(c, r)| (x - c[0]).hypot(y - c[1]) <= *r);
             let wall = tower_wall
+                || solid
                 || (on_rect(x, y, [x0, y0, x1, y1]) && !in_tower_room)
                 || on_rect(x, y, keep);
             Luma([if wall { 0 } else { 255 }])

@@ -70,6 +70,25 @@ fn round_tower() {
 }
 
 #[test]
+fn solid_tower() {
+    // A fill core inside the wall ring, and the roof: no storeys, no slits.
+    let (_, s) = run("solid_tower.vsg", &[]);
+    assert_eq!(counts(&s), (3, 3, 0));
+    assert_eq!(s.by_symbol["fill"], 1);
+    assert_eq!(s.by_symbol["masonry"], 1);
+    let pi = std::f64::consts::PI;
+    // The shaft is the whole cylinder π r² h: core and ring add up to it.
+    let shaft = s.volume.by_symbol["fill"] + s.volume.by_symbol["masonry"];
+    assert!(close(shaft, pi * 9.0 * 20.0), "{shaft}");
+    assert!(close(
+        s.volume.by_symbol["roof"],
+        pi * 3.4 * 3.4 * 4.2 / 3.0
+    ));
+    let (_, s) = run("solid_tower.vsg", &[("radius", 2.0), ("wall", 0.5)]);
+    assert!(close(s.volume.by_symbol["fill"], pi * 1.5 * 1.5 * 20.0));
+}
+
+#[test]
 fn square_tower() {
     let (_, s) = run("square_tower.vsg", &[]);
     // Body: 2 side walls, 5 x (floor + room), 2 faces x 5 x (2 masonry + 3 window band);
