@@ -139,8 +139,9 @@ pub struct PlanArgs {
     /// default, see docs/plan.md).
     #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
     pub thin_lines: Option<f64>,
-    /// Fill hatched walls: paper slivers between parallel hatch strokes become wall (off by
-    /// default, see docs/plan.md).
+    /// The walls are drawn hatched: the paper between diagonal hatch strokes becomes wall
+    /// (off by default: on plans with solid walls it takes hachured ditches for walls; see
+    /// docs/plan.md).
     #[arg(long)]
     pub hatching: bool,
     /// Remove hachured slopes and moats: bands of short parallel thin strokes (off by

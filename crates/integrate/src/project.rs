@@ -22,6 +22,10 @@ pub struct Project {
     /// fraction of the wall thickness (`castellan plan --thin-lines`); off when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thin_lines: Option<f64>,
+    /// The plan's walls are drawn hatched: the paper between diagonal hatch strokes is filled
+    /// before parsing (`castellan plan --hatching`); off when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hatching: Option<bool>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
@@ -130,6 +134,7 @@ impl Project {
     pub fn plan_options(&self) -> plan::Options {
         plan::Options {
             thin_lines: self.thin_lines.unwrap_or(0.0),
+            hatching: self.hatching.unwrap_or(false),
             ..Default::default()
         }
     }
@@ -353,6 +358,14 @@ plan_points = [[10, 10], [20, 20]]
         assert_eq!(ribbed.plan_options().thin_lines, 0.3);
         let plain = Project::from_toml(GOOD).unwrap().plan_options();
         assert_eq!(plain.thin_lines, plan::Options::default().thin_lines);
+        assert!(!plain.hatching);
+        let hatched = GOOD.replace("scale = 0.05", "scale = 0.05\nhatching = true");
+        assert!(
+            Project::from_toml(&hatched)
+                .unwrap()
+                .plan_options()
+                .hatching
+        );
         let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 2"))
             .unwrap_err()
             .to_string();

@@ -208,11 +208,8 @@ pub fn preprocess_clean(
         0.0
     };
     if cleanup.hatching {
-        // Hatch gaps are a few pixels wide whatever the walls' thickness (which the hatching
-        // hides from `wall_thickness`), so the limit follows the drawing's size: 3 px on an
-        // enlarged book plan, 6 px on a 2400-px scan.
-        let max_inset = (long / 400).clamp(2, 6) as u8;
-        stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, max_inset);
+        let params = crate::hatching::HatchParams::for_sheet(long);
+        stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, &params);
     }
     if cleanup.hachures {
         let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;

@@ -1,80 +1,82 @@
-//! Hatched walls made solid: an addition to §5.1.2 step (2) (small white regions filled),
-//! which fills only regions under 0.05 % of the image. A wall drawn as two outlines with
-//! parallel hatching between them leaves long slivers of paper between the hatch strokes,
-//! often joined around a stroke's end into regions too large for step (2); step (4)'s opening
-//! then removes the thin strokes and outlines and the wall is lost (Loftie's White Tower).
+//! Hatched walls made solid: an addition to §5.1.2, which assumes walls drawn solid (or as
+//! outlines whose small inner specks step (2) fills). Engraved plans draw walls as two
+//! outlines with parallel hatch strokes between them (Loftie's White Tower); step (4)'s
+//! opening then erases the thin strokes and outlines, and the wall is lost.
+//!
+//! A hatch pattern is recognised along image rows and columns: a run of at least
+//! [`HatchParams::min_gaps`] paper gaps of nearly equal length, each between thin ink runs.
+//! Rooms break such a run (their width is far above the pattern's gaps), and so do thick
+//! walls; a corridor is two walls, not a pattern. A paper pixel is filled when it lies in a
+//! pattern along its row *and* its column, with gaps of similar length: the strokes run
+//! diagonally, the engravers' convention for cut walls. Viollet-le-Duc shades water, ground
+//! and roofs with horizontal lines and draws stairs as lines square to the sheet (Provins,
+//! Carcassonne, Narbonne): one direction sees those, not both.
 
 use image::GrayImage;
-use imageproc::distance_transform::{Norm, distance_transform};
-use imageproc::morphology::close;
 
-use crate::binarize::{Connectivity, components};
-use crate::strokes::{Grid, angle_between, strokes};
+/// How a hatch pattern looks along a row or column, in pixels of the thresholded drawing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HatchParams {
+    /// Widest ink run that is a hatch stroke (wider ink is a wall or an outline).
+    pub max_stroke: usize,
+    /// Longest paper gap between two strokes of a pattern.
+    pub max_gap: usize,
+    /// Gaps needed in one run of the pattern.
+    pub min_gaps: usize,
+    /// A gap belongs to its run's pattern when its length is within this factor of the
+    /// run's median gap (broken strokes make double gaps; letters make uneven ones).
+    pub regularity: f64,
+    /// Largest ratio of a pixel's row gap to its column gap (either way round): 1 for
+    /// strokes at 45°, 2 for strokes at about 27° or 63° to the rows.
+    pub max_skew: f64,
+}
 
-/// Paper slivers count as parallel when their long axes differ by at most this (radians).
-const PARALLEL: f64 = 0.26;
-/// A sliver is this many times longer than wide.
-const ELONGATED: f64 = 3.0;
-/// Slivers of a hatch pattern needed around a sliver (its own siblings, not counting itself).
-const SIBLINGS: usize = 2;
+impl HatchParams {
+    /// The pattern's size follows the drawing's: engraved hatching is a few tenths of a
+    /// millimetre apart whatever the building, so its gaps scale with the sheet, not with
+    /// the walls (which the hatching hides from `wall_thickness`). Chosen on Loftie's White
+    /// Tower enlarged to 1300 px (strokes 2–4 px, gaps 8–14 px along rows) and measured on
+    /// the development set (docs/plan.md).
+    pub fn for_sheet(long_side: u32) -> Self {
+        let long = long_side as usize;
+        HatchParams {
+            max_stroke: (long / 260).clamp(2, 10),
+            max_gap: (long / 80).clamp(6, 32),
+            min_gaps: 3,
+            regularity: 1.8,
+            max_skew: 2.0,
+        }
+    }
+}
 
-/// Fills the paper between hatch strokes so a hatched wall becomes solid: a white
-/// (4-connected) region is a gap of a hatch pattern when it is a thin sliver — no pixel more
-/// than `max_inset` from the ink (rooms and courtyards are much wider, so they are never
-/// filled), elongated, off the image border — and at least two other such slivers with the
-/// same orientation lie beside it (within its length, and not end to end: offset across its
-/// axis at least half the offset along it, since the outlines shift oblique slivers sideways): between parallel slivers there are parallel ink strokes, i.e. hatching. Returns
-/// the pixels filled.
-pub fn fill_hatching(img: &mut GrayImage, max_inset: u8) -> usize {
+/// Fills the paper gaps of hatch patterns (ink = 255) along every row and column, so that a
+/// hatched wall becomes solid before §5.1.2's steps. Returns the pixels filled.
+pub fn fill_hatching(img: &mut GrayImage, params: &HatchParams) -> usize {
     let (w, h) = (img.width() as usize, img.height() as usize);
-    // Engraved hatch strokes are broken every few pixels, which joins all the gaps of a
-    // pattern into one region: the gaps are found with 1–2-px breaks bridged (closing with a
-    // 3 × 3 square), and only their own pixels are filled (the breaks are then specks).
-    let bridged = close(img, Norm::LInf, 1);
-    let white = components(&bridged, 0, Connectivity::Four);
-    // Distance of every paper pixel to the nearest ink: a region's inscribed radius.
-    let to_ink = distance_transform(&bridged, Norm::LInf);
-    let mut inset = vec![0u8; white.sizes.len()];
-    for (&l, d) in white.labels.iter().zip(to_ink.pixels()) {
-        inset[l as usize] = inset[l as usize].max(d[0]);
+    let ink: Vec<bool> = img.pixels().map(|p| p[0] == 255).collect();
+    // Length of the pattern gap each pixel lies in along its row and its column (0: none).
+    let mut row_gap = vec![0u32; w * h];
+    let mut col_gap = vec![0u32; w * h];
+    let mut line = Vec::with_capacity(w.max(h));
+    let mut gaps = Vec::with_capacity(w.max(h));
+    for y in 0..h {
+        line.clear();
+        line.extend_from_slice(&ink[y * w..(y + 1) * w]);
+        pattern_gaps(&line, params, &mut gaps);
+        row_gap[y * w..(y + 1) * w].copy_from_slice(&gaps);
     }
-    let limit = (w * h) / 100;
-    let slivers = strokes(&white, w, |l| {
-        let b = white.bbox[l];
-        let on_border = b[0] == 0 || b[1] == 0 || b[2] as usize == w - 1 || b[3] as usize == h - 1;
-        inset[l] <= max_inset && white.sizes[l] >= 3 && white.sizes[l] < limit && !on_border
-    });
-    let slivers: Vec<_> = slivers
-        .into_iter()
-        .filter(|s| s.elongation() >= ELONGATED)
-        .collect();
-    if slivers.is_empty() {
-        return 0;
-    }
-    let longest = slivers.iter().map(|s| s.length).fold(0.0, f64::max);
-    let grid = Grid::new(&slivers, w, h, longest);
-    let mut fill = vec![false; white.sizes.len()];
-    for s in &slivers {
-        let siblings = grid
-            .near(&slivers, s.centre, s.length)
-            .into_iter()
-            .filter(|&j| {
-                let o = &slivers[j];
-                let (along, across) = s.offset(o);
-                o.label != s.label
-                    && angle_between(s.angle, o.angle) <= PARALLEL
-                    && 2.0 * across >= along
-                    && o.length >= 0.5 * s.length
-                    && o.length <= 2.0 * s.length
-            })
-            .count();
-        if siblings >= SIBLINGS {
-            fill[s.label as usize] = true;
+    for x in 0..w {
+        line.clear();
+        line.extend((0..h).map(|y| ink[y * w + x]));
+        pattern_gaps(&line, params, &mut gaps);
+        for (y, &g) in gaps.iter().enumerate() {
+            col_gap[y * w + x] = g;
         }
     }
     let mut filled = 0;
-    for (p, &l) in img.pixels_mut().zip(&white.labels) {
-        if fill[l as usize] && p[0] == 0 {
+    for ((p, &r), &c) in img.pixels_mut().zip(&row_gap).zip(&col_gap) {
+        let (r, c) = (f64::from(r), f64::from(c));
+        if r > 0.0 && c > 0.0 && r.max(c) <= params.max_skew * r.min(c) {
             p[0] = 255;
             filled += 1;
         }
@@ -82,22 +84,140 @@ pub fn fill_hatching(img: &mut GrayImage, max_inset: u8) -> usize {
     filled
 }
 
+/// A maximal stretch of one value along a line.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    ink: bool,
+    start: usize,
+    len: usize,
+}
+
+fn runs(line: &[bool]) -> Vec<Run> {
+    let mut out: Vec<Run> = Vec::new();
+    for (i, &v) in line.iter().enumerate() {
+        match out.last_mut() {
+            Some(r) if r.ink == v => r.len += 1,
+            _ => out.push(Run {
+                ink: v,
+                start: i,
+                len: 1,
+            }),
+        }
+    }
+    out
+}
+
+/// Writes into `gaps`, for each pixel of `line`, the length of the hatch-pattern gap it lies
+/// in (0 for none). A pattern is consecutive
+/// gaps no longer than `max_gap`, each bounded by ink and separated by strokes no wider than
+/// `max_stroke` (the pattern may end on a wide outline), at least `min_gaps` of them within
+/// `regularity` of their median.
+fn pattern_gaps(line: &[bool], p: &HatchParams, gaps: &mut Vec<u32>) {
+    gaps.clear();
+    gaps.resize(line.len(), 0);
+    let rs = runs(line);
+    let mut pattern: Vec<Run> = Vec::new();
+    let flush = |pattern: &mut Vec<Run>, gaps: &mut Vec<u32>| {
+        if pattern.len() >= p.min_gaps {
+            let mut lens: Vec<usize> = pattern.iter().map(|r| r.len).collect();
+            lens.sort_unstable();
+            let median = lens[lens.len() / 2] as f64;
+            let regular = |r: &Run| {
+                let l = r.len as f64;
+                l <= p.regularity * median && l * p.regularity >= median
+            };
+            if pattern.iter().filter(|r| regular(r)).count() >= p.min_gaps {
+                for r in pattern.iter().filter(|r| regular(r)) {
+                    gaps[r.start..r.start + r.len].fill(r.len as u32);
+                }
+            }
+        }
+        pattern.clear();
+    };
+    // The first and last runs touch the sheet's edge: no gap there is bounded by ink.
+    for r in rs.iter().skip(1).take(rs.len().saturating_sub(2)) {
+        if r.ink {
+            if r.len > p.max_stroke {
+                flush(&mut pattern, gaps);
+            }
+        } else if r.len <= p.max_gap {
+            pattern.push(*r);
+        } else {
+            flush(&mut pattern, gaps);
+        }
+    }
+    flush(&mut pattern, gaps);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use image::Luma;
 
-    /// A 120 × 60 sheet: a wall 12 px thick drawn as two 1-px outlines (rows 20 and 31)
-    /// joined by 1-px diagonal hatch strokes every 6 px, and below it a 20-px room drawn with
-    /// 1-px walls.
-    fn hatched_wall_and_room() -> GrayImage {
-        GrayImage::from_fn(120, 60, |x, y| {
+    fn params() -> HatchParams {
+        HatchParams {
+            max_stroke: 3,
+            max_gap: 8,
+            min_gaps: 3,
+            regularity: 1.8,
+            max_skew: 2.0,
+        }
+    }
+
+    fn gaps(s: &str) -> String {
+        let line: Vec<bool> = s.chars().map(|c| c == '#').collect();
+        let mut g = Vec::new();
+        pattern_gaps(&line, &params(), &mut g);
+        g.iter()
+            .map(|&n| char::from_digit(n, 10).unwrap_or('+'))
+            .collect()
+    }
+
+    #[test]
+    fn even_gaps_between_strokes_are_a_pattern() {
+        assert_eq!(
+            gaps("..#####....#....#...#....######.."),
+            "000000044440444403330444400000000"
+        );
+    }
+
+    #[test]
+    fn two_gaps_a_room_or_a_thick_stroke_are_not() {
+        assert_eq!(gaps("..####....#....####.."), "000000000000000000000");
+        assert_eq!(
+            gaps("..##..................##.."),
+            "00000000000000000000000000"
+        );
+        // The strokes are as wide as walls: a row of small cells, not hatching.
+        assert_eq!(
+            gaps("..####....####....####....####.."),
+            "00000000000000000000000000000000"
+        );
+    }
+
+    #[test]
+    fn an_uneven_gap_leaves_the_pattern_the_rest_stays() {
+        // A 1-px gap (two strokes touching) is not within 1.8 of the median 4.
+        assert_eq!(gaps("#....#....#.#....#"), "044440444400044440");
+    }
+
+    #[test]
+    fn gaps_open_to_the_sheet_edge_are_not_bounded() {
+        assert_eq!(gaps("....#....#....#....#...."), "000004444044440444400000");
+    }
+
+    /// A 120 × 80 sheet: a wall 24 px thick drawn as two 1-px outlines (rows 20 and 43)
+    /// joined by 1-px hatch strokes every 6 px (diagonal, or `square`: vertical), and below
+    /// it a 20-px room drawn with 1-px walls.
+    fn hatched_wall_and_room(square: bool) -> GrayImage {
+        GrayImage::from_fn(120, 80, |x, y| {
             let (x, y) = (x as i32, y as i32);
-            let outline = (y == 20 || y == 31) && (10..110).contains(&x);
-            let ends = (x == 10 || x == 109) && (20..=31).contains(&y);
-            let hatch = (21..31).contains(&y) && (10..110).contains(&x) && (x + y) % 6 == 0;
-            let room = ((y == 36 || y == 56) && (30..=60).contains(&x))
-                || ((x == 30 || x == 60) && (36..=56).contains(&y));
+            let outline = (y == 20 || y == 43) && (10..110).contains(&x);
+            let ends = (x == 10 || x == 109) && (20..=43).contains(&y);
+            let phase = if square { x } else { x + y };
+            let hatch = (21..43).contains(&y) && (10..110).contains(&x) && phase % 6 == 0;
+            let room = ((y == 50 || y == 70) && (30..=60).contains(&x))
+                || ((x == 30 || x == 60) && (50..=70).contains(&y));
             Luma([if outline || ends || hatch || room {
                 255
             } else {
@@ -107,17 +227,40 @@ mod tests {
     }
 
     #[test]
-    fn hatching_becomes_solid_a_room_stays_open() {
-        let mut img = hatched_wall_and_room();
+    fn diagonal_hatching_becomes_solid_a_room_stays_open() {
+        let mut img = hatched_wall_and_room(false);
         // Without the step the opening of §5.1.2 (4) erases the 1-px outlines and hatching.
         let opened = crate::binarize::open_close(&img);
-        assert_eq!(opened.get_pixel(50, 25)[0], 0);
-        assert!(fill_hatching(&mut img, 3) > 0);
+        assert_eq!(opened.get_pixel(50, 30)[0], 0);
+        let filled = fill_hatching(&mut img, &params());
+        // The band's paper (less its strokes) is filled, but for gaps against the outlines
+        // too short for the pattern's 5-px gaps; step (2) of §5.1.2 fills those as specks.
+        let paper = (11..109)
+            .flat_map(|x| (21..43).map(move |y| (x, y)))
+            .filter(|&(x, y)| (x + y) % 6 != 0)
+            .count();
+        assert!(
+            filled <= paper && 10 * filled >= 8 * paper,
+            "{filled} of {paper}"
+        );
         let opened = crate::binarize::open_close(&img);
-        for x in 20..100 {
-            assert_eq!(opened.get_pixel(x, 25)[0], 255, "wall at x = {x}");
+        for x in 14..106 {
+            for y in 23..41 {
+                assert_eq!(opened.get_pixel(x, y)[0], 255, "wall at ({x}, {y})");
+            }
         }
-        assert_eq!(img.get_pixel(45, 46)[0], 0, "the room");
+        for x in 31..60 {
+            for y in 51..70 {
+                assert_eq!(img.get_pixel(x, y)[0], 0, "the room at ({x}, {y})");
+            }
+        }
         assert_eq!(img.get_pixel(5, 5)[0], 0, "the paper around");
+    }
+
+    #[test]
+    fn lines_square_to_the_sheet_stay_lines() {
+        // Vertical strokes: a pattern along rows only (stairs, or water shaded in lines).
+        let mut img = hatched_wall_and_room(true);
+        assert_eq!(fill_hatching(&mut img, &params()), 0);
     }
 }

@@ -97,8 +97,9 @@ pub struct Options {
     /// Count bulges of the castle's outline with no room of their own as towers
     /// ([`bulges::find`]; issue 11, departure from §5.1.6 (4)).
     pub bulge_towers: bool,
-    /// Fill hatched walls ([`hatching::fill_hatching`]) before §5.1.2's steps. Off by
-    /// default: no development-set or batch figure moved (docs/plan.md).
+    /// Fill hatched walls ([`hatching::fill_hatching`]) before §5.1.2's steps, for drawings
+    /// whose walls are hatched. Off by default: on the development set (solid walls) it
+    /// takes hachures for hatching and exact tower counts fall 6 → 4 (docs/plan.md).
     pub hatching: bool,
     /// Remove hachured slopes and moats ([`hachures::drop_hachures`]) before §5.1.2's steps.
     /// Off by default: with the dashes linked, exact tower counts fall 6 → 5 (docs/plan.md).

@@ -215,6 +215,7 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
                     scale: None,
                     scale_bar: None,
                     thin_lines: None,
+                    hatching: None,
                     seed: None,
                     facades: vec![],
                     gothics: vec![],
