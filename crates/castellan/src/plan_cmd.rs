@@ -20,6 +20,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         hatching: args.hatching,
         hachures: args.hachures,
         dashes: !args.no_dashes,
+        inner_ward_towers: !args.no_inner_towers,
         ..Default::default()
     };
     let image = match (&args.batch, &args.image) {
@@ -152,6 +153,10 @@ pub struct PlanArgs {
     /// collinear, evenly spaced dashes or dots are joined into a line; see docs/plan.md).
     #[arg(long)]
     pub no_dashes: bool,
+    /// Count only the towers on the outer wall, as §5.1.6 (4) does (by default thick-walled
+    /// towers bulging into a courtyard from a ward's wall count too; see docs/plan.md).
+    #[arg(long)]
+    pub no_inner_towers: bool,
 }
 
 /// Metres per pixel from the bar drawn on the plan, said to be `metres` long; prints `label`
@@ -302,6 +307,14 @@ mod flag_tests {
         assert!(a.hatching && a.hachures && a.no_dashes);
         assert!(plan_args(&["--no-dashes", "yes"]).is_err());
         assert!(plan_args(&["--dashes"]).is_err());
+    }
+
+    #[test]
+    fn plan_inner_towers_are_on_unless_turned_off() {
+        assert!(!plan_args(&[]).unwrap().no_inner_towers);
+        assert!(plan_args(&["--no-inner-towers"]).unwrap().no_inner_towers);
+        assert!(plan_args(&["--no-inner-towers", "yes"]).is_err());
+        assert!(plan_args(&["--inner-towers"]).is_err());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Prints the development-set table (issue 11): labels at the annotated points and tower
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
-//! [-- --no-close-gaps] [--inner-towers]
+//! [-- --no-close-gaps] [--no-inner-towers]
 //! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--overlays DIR] [--all]`; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
@@ -22,7 +22,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let opts = plan::Options {
         close_gaps: !args.iter().any(|a| a == "--no-close-gaps"),
-        inner_ward_towers: args.iter().any(|a| a == "--inner-towers"),
+        inner_ward_towers: !args.iter().any(|a| a == "--no-inner-towers"),
         drop_marks: !args.iter().any(|a| a == "--no-drop-marks"),
         ward_ratio: arg_value("--ward-ratio").map_or(0.3, |v| v.parse().unwrap()),
         thin_lines: arg_value("--thin-lines").map_or(0.0, |v| v.parse().unwrap()),

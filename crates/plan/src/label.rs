@@ -177,20 +177,14 @@ pub fn heuristics(s: &Scene) -> Labelling {
             *l = Some(Label::TowerWall);
         }
     }
-    // (4') towers of an inner ward (issue 11, several enclosures): walls inside the enceinte
-    // that bulge out into the courtyard around a small room. Departure from §5.1.6 (4), which
-    // tests only the walls bounding the surroundings, so an inner ward's towers (Château-
-    // Gaillard, Bonaguil) were never towers. Measured on the development set (docs/plan.md).
+    // (4') towers of an inner ward (issue 11, several enclosures): thick walls inside the
+    // enceinte bulging into the courtyard around a small room on a ward's wall. Departure from
+    // §5.1.6 (4), which tests only the walls bounding the surroundings, so an inner ward's
+    // towers (Chambord, Bonaguil) were never towers; the tests are in `inner_towers`.
     if s.inner_ward_towers {
-        for (e, label) in el.iter_mut().enumerate().take(ne) {
-            if label.is_none()
-                && is_tower(s, e, &fl, extent, Label::Courtyard, INNER_BULGE)
-                && s.edge_faces[e]
-                    .iter()
-                    .any(|&f| fl[f].is_none() && is_small_room(s, f, &fl))
-            {
-                *label = Some(Label::TowerWall);
-            }
+        let found = crate::inner_towers::find(s, &fl, &el, extent);
+        for e in found {
+            el[e] = Some(Label::TowerWall);
         }
     }
     // (5) tower rooms.
@@ -273,6 +267,14 @@ fn castle_extent(walls: &Mask) -> f64 {
     }
 }
 
+/// The farthest point of an edge's chain from its chord, as §5.1.6 (4)'s convexity test sees it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Apex {
+    pub point: (f64, f64),
+    /// Unit vector from the chord to the apex.
+    pub normal: (f64, f64),
+}
+
 /// §5.1.6 (4): compares the edge's chain with the straight chord between its vertices. The
 /// chain is a tower when it departs far from the chord (Jensen's inequality: a convex bulge),
 /// towards the exterior: just beyond its farthest point lies the castle surroundings. Towers
@@ -286,6 +288,16 @@ fn is_tower(
     outside: Label,
     bulge: f64,
 ) -> bool {
+    bulge_apex(s, e, extent, bulge).is_some_and(|apex| match beyond_apex(s, e, apex) {
+        Beyond::Off => outside == Label::CastleSurroundings,
+        Beyond::Face(f) => fl.get(f).copied().flatten() == Some(outside),
+        Beyond::Wall => false,
+    })
+}
+
+/// The apex of the edge when its chain bulges at least `bulge` of its chord (and 1.5 wall
+/// thicknesses) away from it, and chord and bulge are small against the castle's `extent`.
+pub(crate) fn bulge_apex(s: &Scene, e: usize, extent: f64, bulge: f64) -> Option<Apex> {
     let edge = &s.graph.edges[e];
     let a = &s.graph.vertices[edge.from];
     let b = &s.graph.vertices[edge.to];
@@ -309,52 +321,46 @@ fn is_tower(
     let (dev, p, foot) = best;
     let t = s.thickness[e];
     if dev < (bulge * len).max(1.5 * t).max(3.0) || len > 0.45 * extent || dev > 0.45 * extent {
-        return false;
+        return None;
     }
-    let (nx, ny) = ((p.0 - foot.0) / dev, (p.1 - foot.1) / dev);
+    Some(Apex {
+        point: p,
+        normal: ((p.0 - foot.0) / dev, (p.1 - foot.1) / dev),
+    })
+}
+
+/// What lies just beyond an apex, outwards through its wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Beyond {
+    /// Off the image: the surroundings.
+    Off,
+    Face(usize),
+    /// Wall further than the edge's thickness and 8 px.
+    Wall,
+}
+
+/// The face just beyond the apex, outwards through the wall.
+pub(crate) fn beyond_apex(s: &Scene, e: usize, apex: Apex) -> Beyond {
+    let (p, (nx, ny)) = (apex.point, apex.normal);
     let w = s.walls.width as i32;
     let h = s.walls.height as i32;
-    let reach = (t + 8.0).ceil() as i32;
+    let reach = (s.thickness[e] + 8.0).ceil() as i32;
     for k in 1..=reach {
         let (qx, qy) = (
             (p.0 + nx * k as f64).round() as i32,
             (p.1 + ny * k as f64).round() as i32,
         );
         if qx < 0 || qy < 0 || qx >= w || qy >= h {
-            return true;
+            return Beyond::Off;
         }
         let i = (qy * w + qx) as usize;
         if s.skel.data[i] == 1 || s.walls.data[i] == 1 {
             continue;
         }
-        let f = s.face_of[i] as usize;
-        return f < fl.len() && fl[f] == Some(outside);
+        return Beyond::Face(s.face_of[i] as usize);
     }
-    false
+    Beyond::Wall
 }
-
-/// A face small enough to be a tower room against the courtyard (under an eighth of its area)
-/// and compact enough.
-fn is_small_room(s: &Scene, f: usize, fl: &[Option<Label>]) -> bool {
-    let court = (0..fl.len())
-        .filter(|&c| fl[c] == Some(Label::Courtyard))
-        .map(|c| s.faces[c].area)
-        .max()
-        .unwrap_or(0);
-    let info = &s.faces[f];
-    // Round or square: a disc's area is π r², a square's 4 r², for the inset r; stair flights
-    // and passages cut by hatching are long and narrow (Saint-Médard's stair P).
-    let compact = info.area as f64 <= ROUND_ROOM * info.max_inset.max(1.0).powi(2);
-    info.area > 0 && 8 * info.area < court && compact && info.max_inset >= 3.0
-}
-
-/// An inner ward's tower must bulge this fraction of its chord into the courtyard (an outer
-/// tower 0.25): walls inside the enceinte bend round stairs and halls more often than the
-/// curtain does.
-const INNER_BULGE: f64 = 0.4;
-
-/// Area over inset squared below which a face is round or square enough to be a tower room.
-const ROUND_ROOM: f64 = 5.0;
 
 /// Label of every pixel (§5.1.6): open pixels take their face's label; wall pixels take the
 /// label of the nearest remaining wall edge, reached through the wall (breadth-first from the
