@@ -26,6 +26,9 @@ pub struct PreStats {
     pub thin_line_pixels: usize,
     /// Paper pixels filled between hatch strokes ([`crate::hatching::fill_hatching`]).
     pub hatching_pixels: usize,
+    /// With hatching off: the share of the sheet in diagonal hatch patterns
+    /// ([`crate::hatching::hatch_share`]), for the hint that the walls may be hatched.
+    pub hatch_share: f64,
     /// Ink pixels removed as hachures ([`crate::hachures::drop_hachures`]).
     pub hachure_pixels: usize,
     /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
@@ -207,9 +210,11 @@ pub fn preprocess_clean(
     } else {
         0.0
     };
+    let params = crate::hatching::HatchParams::for_sheet(long);
     if cleanup.hatching {
-        let params = crate::hatching::HatchParams::for_sheet(long);
         stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, &params);
+    } else {
+        stats.hatch_share = crate::hatching::hatch_share(&img, &params);
     }
     if cleanup.hachures {
         let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;

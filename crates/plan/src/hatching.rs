@@ -52,6 +52,26 @@ impl HatchParams {
 /// Fills the paper gaps of hatch patterns (ink = 255) along every row and column, so that a
 /// hatched wall becomes solid before §5.1.2's steps. Returns the pixels filled.
 pub fn fill_hatching(img: &mut GrayImage, params: &HatchParams) -> usize {
+    let gaps = hatch_gaps(img, params);
+    for (p, &g) in img.pixels_mut().zip(&gaps) {
+        if g {
+            p[0] = 255;
+        }
+    }
+    gaps.iter().filter(|&&g| g).count()
+}
+
+/// The share of the sheet that [`fill_hatching`] would fill, without filling it: drawings
+/// whose walls are hatched stand out (Loftie's White Tower 6.8 %; among the other 235
+/// castle plans the most is 3.3 %, contour lines of a Roche-Pont map).
+pub fn hatch_share(img: &GrayImage, params: &HatchParams) -> f64 {
+    let n = hatch_gaps(img, params).iter().filter(|&&g| g).count();
+    n as f64 / (img.width() as f64 * img.height() as f64).max(1.0)
+}
+
+/// Paper pixels in a diagonal hatch pattern: in a pattern along their row and their column,
+/// with gap lengths within [`HatchParams::max_skew`] of each other.
+fn hatch_gaps(img: &GrayImage, params: &HatchParams) -> Vec<bool> {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let ink: Vec<bool> = img.pixels().map(|p| p[0] == 255).collect();
     // Length of the pattern gap each pixel lies in along its row and its column (0: none).
@@ -73,15 +93,14 @@ pub fn fill_hatching(img: &mut GrayImage, params: &HatchParams) -> usize {
             col_gap[y * w + x] = g;
         }
     }
-    let mut filled = 0;
-    for ((p, &r), &c) in img.pixels_mut().zip(&row_gap).zip(&col_gap) {
-        let (r, c) = (f64::from(r), f64::from(c));
-        if r > 0.0 && c > 0.0 && r.max(c) <= params.max_skew * r.min(c) {
-            p[0] = 255;
-            filled += 1;
-        }
-    }
-    filled
+    row_gap
+        .iter()
+        .zip(&col_gap)
+        .map(|(&r, &c)| {
+            let (r, c) = (f64::from(r), f64::from(c));
+            r > 0.0 && c > 0.0 && r.max(c) <= params.max_skew * r.min(c)
+        })
+        .collect()
 }
 
 /// A maximal stretch of one value along a line.

@@ -244,6 +244,11 @@ fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
     pts
 }
 
+/// Share of the sheet in diagonal hatch patterns above which a drawing parsed without the
+/// hatching step is warned that its walls may be hatched: Loftie's White Tower has 6.8 %, the
+/// other 235 castle plans at most 3.3 % (`hatching::hatch_share`).
+const HATCHED_SHARE: f64 = 0.05;
+
 /// Towers: groups of tower-wall edges joined at shared vertices. Departure from counting
 /// tower-wall edges one by one: on real drawings a tower's wall is often split into several
 /// edges by the walls meeting it (Coucy: 5 towers, 18 tower-wall edges), so the edge count
@@ -509,6 +514,12 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
             "the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)"
                 .into(),
         );
+    }
+    if pre.hatch_share >= HATCHED_SHARE {
+        warnings.push(format!(
+            "diagonal hatch patterns cover {:.1} % of the sheet: if the walls are drawn hatched, parse with hatching on (--hatching, or hatching = true in a project)",
+            100.0 * pre.hatch_share
+        ));
     }
     let bulge_towers = if opts.bulge_towers {
         find_bulge_towers(&mut labels, &walls, &edges)

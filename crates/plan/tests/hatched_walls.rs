@@ -75,6 +75,8 @@ fn issue11_hatched_walls_parse_like_solid_ones() {
     assert_eq!(with_step.towers, from_solid.towers);
     // The step changes nothing on the solid drawing: it has no hatch pattern.
     assert_eq!(parse(&solid, true).pre.hatching_pixels, 0);
+    assert_eq!(from_solid.pre.hatch_share, 0.0);
+    assert!(without_step.pre.hatch_share > 0.0);
 }
 
 /// Loftie's White Tower (public domain, ../shared/data/castle_drawings_pd): walls, halls and
@@ -115,4 +117,8 @@ fn issue11_white_tower_walls_join_with_the_hatching_filled() {
         assert_eq!(without_step.label_at(x, y), Label::CastleSurroundings);
     }
     assert_eq!(with_step.label_at(525, 250), Label::CastleSurroundings);
+    // Parsed without the step, the drawing says it looks hatched.
+    let hint = |p: &ParsedPlan| p.warnings.iter().any(|w| w.contains("--hatching"));
+    assert!(hint(&without_step), "{:?}", without_step.warnings);
+    assert!(!hint(&with_step));
 }
