@@ -7,6 +7,8 @@ use serde::Serialize;
 
 use crate::binarize::{Connectivity, binarize, components, threshold_level};
 
+pub mod eval;
+
 /// A scale bar: its two ends, in the drawing's pixels (`y0 == y1` for a horizontal bar,
 /// `x0 == x1` for a vertical one).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
