@@ -41,7 +41,7 @@ impl ScaleBar {
 }
 
 /// What the finder looks for, for messages when it finds nothing.
-pub const LOOKED_FOR: &str = "a horizontal ruled line at least 40 px long with three or more evenly spaced ticks, apart from the walls";
+pub const LOOKED_FOR: &str = "a horizontal ruled line at least 40 px long with three or more evenly spaced ticks (or a vertical one with five and numerals beside them), apart from the walls";
 
 /// How far from the line, in pixels, the paper must be clear for the line to count as thin
 /// (a bar up to 2 × CLEAR − 1 px thick); ticks and lettering that reach this far leave gaps.
@@ -96,7 +96,10 @@ const MIN_OPEN: f64 = 0.6;
 /// of the drawing's width long, seen along 80 % of its length with gaps of at most 6 px, crossed
 /// by three or more short ticks that divide it evenly and are no denser than one per 6 px, with
 /// clear paper beside it, on the open sheet, away from the walls; it is trimmed to its outer
-/// full-height ticks. The longest wins. None when nothing qualifies.
+/// full-height ticks, or runs to the line's end when that is a whole number of units past
+/// them. The longest wins. Where no row holds a bar, the columns are scanned the same way, a
+/// vertical bar needing also five or more ticks all evenly spaced and numerals beside three
+/// of them. None when nothing qualifies.
 ///
 /// Departs from the earlier rule (one connected region with a 90 %-inked row, outside the
 /// castle's bounding box): real bars are broken by ticks and numerals and often sit within the

@@ -37,9 +37,15 @@ pub(super) fn longest_bar(g: &Grid, numbered: bool) -> Option<(usize, usize, usi
                 continue;
             }
             let l = snap_to_ink(g, start, end, l);
-            let ticks = Ticks::of(g, start, end, l);
-            let (start, end) = ticks.extend(g, start, end, l);
-            let ticked = ticks.centres(g, start, end, l);
+            let (run_start, run_end) = (start, end);
+            let mut ticks = Ticks::of(g, start, end, l);
+            let (mut start, mut end) = ticks.extend(g, start, end, l);
+            let mut ticked = ticks.centres(g, start, end, l);
+            if ticked.len() < MIN_TICKS {
+                ticks = Ticks::of_checkered(g, run_start, run_end, l);
+                (start, end) = ticks.extend(g, run_start, run_end, l);
+                ticked = ticks.centres(g, start, end, l);
+            }
             let Some(centres) = graduations(&ticked, start, end) else {
                 continue;
             };

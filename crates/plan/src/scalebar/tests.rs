@@ -16,8 +16,7 @@ fn sheet(extra: impl Fn(u32, u32) -> bool) -> GrayImage {
 /// A 1-px line on row 170 from x = 150 to 270 with 7-px ticks every 20 px above it.
 fn bar(x: u32, y: u32) -> bool {
     let line = (150..=270).contains(&x) && y == 170;
-    let tick =
-        (150..=270).contains(&x) && (x - 150).is_multiple_of(20) && (164..=170).contains(&y);
+    let tick = (150..=270).contains(&x) && (x - 150).is_multiple_of(20) && (164..=170).contains(&y);
     line || tick
 }
 
@@ -46,8 +45,7 @@ fn breaks_numerals_and_a_line_running_on_under_a_word_keep_the_bar_whole() {
         let numeral = |c: u32| (c + 2..=c + 6).contains(&x) && (154..=159).contains(&y);
         // The line runs on 7 px past the last tick under a word with 3-px letter stems.
         let run_on = (271..=277).contains(&x) && y == 170;
-        let letters =
-            (272..=277).contains(&x) && x.is_multiple_of(2) && (167..=169).contains(&y);
+        let letters = (272..=277).contains(&x) && x.is_multiple_of(2) && (167..=169).contains(&y);
         broken || numeral(190) || numeral(250) || run_on || letters
     };
     let b = find(&sheet(engraved)).unwrap();
@@ -91,8 +89,7 @@ fn a_line_without_even_ticks_is_not_a_bar() {
 #[test]
 fn the_edge_of_hachures_is_not_a_bar() {
     let hachured = |x: u32, y: u32| {
-        (150..=270).contains(&x)
-            && (y == 170 || x.is_multiple_of(3) && (160..=170).contains(&y))
+        (150..=270).contains(&x) && (y == 170 || x.is_multiple_of(3) && (160..=170).contains(&y))
     };
     assert_eq!(find(&sheet(hachured)), None);
 }
@@ -113,7 +110,10 @@ fn vertical(numerals: bool) -> impl Fn(u32, u32) -> bool {
         let at_tick = on && (y - 40).is_multiple_of(20);
         let line = on && x == 200;
         let tick = at_tick && (200..=206).contains(&x);
-        let near_tick = on && [0, 20, 40, 60, 80, 100, 120].iter().any(|&t| y.abs_diff(40 + t) <= 2);
+        let near_tick = on
+            && [0, 20, 40, 60, 80, 100, 120]
+                .iter()
+                .any(|&t| y.abs_diff(40 + t) <= 2);
         let numeral = numerals && near_tick && (211..=214).contains(&x);
         line || tick || numeral
     }
@@ -122,7 +122,10 @@ fn vertical(numerals: bool) -> impl Fn(u32, u32) -> bool {
 #[test]
 fn a_vertical_bar_with_numerals_beside_its_ticks_is_found() {
     let b = find(&sheet(vertical(true))).unwrap();
-    assert_eq!((b.x0, b.y0, b.x1, b.y1, b.length_px), (200, 40, 200, 160, 121));
+    assert_eq!(
+        (b.x0, b.y0, b.x1, b.y1, b.length_px),
+        (200, 40, 200, 160, 121)
+    );
 }
 
 #[test]
@@ -153,6 +156,34 @@ fn a_bar_whose_second_half_is_a_plain_line_runs_to_its_end() {
     // A plain run-on of 1.55 units is not a bar's end: the line runs on like a wall's outline.
     let run_on = |x: u32, y: u32| half_plain(x, y) && x <= 241;
     assert_eq!(find(&sheet(run_on)), None);
+}
+
+/// A checkered bar: a 4-px-tall strip from x = 150 to 270 outlined top and bottom, its 20-px
+/// boxes filled black from the zero on (four black boxes of six, the last box white).
+fn checkered(x: u32, y: u32) -> bool {
+    let along = (150..=270).contains(&x);
+    let edge = along && (y == 167 || y == 170);
+    let filled = along && x < 270 && ((x - 150) / 20).is_multiple_of(2) && (167..=170).contains(&y);
+    let ends = (x == 150 || x == 270) && (167..=170).contains(&y);
+    edge || filled || ends
+}
+
+#[test]
+fn a_checkered_bar_is_found_end_to_end() {
+    let b = find(&sheet(checkered)).unwrap();
+    assert!(b.x0.abs_diff(150) <= 1 && b.x1.abs_diff(270) <= 1, "{b:?}");
+    assert!((167..=170).contains(&b.y0), "{b:?}");
+}
+
+#[test]
+fn a_thick_line_is_not_read_as_a_checkered_bar() {
+    // A 4-px-thick line with two short stubs: the lower-quartile reading of a checkered bar
+    // would see ticks here, but there are no black boxes.
+    let thick = |x: u32, y: u32| {
+        (150..=270).contains(&x) && (167..=170).contains(&y)
+            || [150, 210, 270].contains(&x) && (162..=170).contains(&y)
+    };
+    assert_eq!(find(&sheet(thick)), None);
 }
 
 /// Issue 11: the Coucy plan shipped with the demo (Viollet-le-Duc, tome 3, fig. 16) has a

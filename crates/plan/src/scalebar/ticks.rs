@@ -17,7 +17,18 @@ pub(super) fn reach(g: &Grid, along: usize, line: isize) -> [usize; 2] {
 /// it typically does along the bar (so a 3-px-thick line is not all ticks), but stops short.
 pub(super) struct Ticks {
     typical: [usize; 2],
+    /// Checkered: runs of tick columns at least MIN_BOX wide are black boxes, each giving
+    /// two graduations (its edges) rather than one.
+    checkered: bool,
+    /// How far the bar itself reaches on each side (a checkered bar's boxes; 0 otherwise):
+    /// the paper beside the bar is looked at beyond it.
+    thickness: [usize; 2],
 }
+
+/// Narrowest black box of a checkered bar (wider than any tick or numeral stroke).
+const MIN_BOX: usize = 12;
+/// Black boxes a checkered bar must show.
+const MIN_BOXES: usize = 2;
 
 impl Ticks {
     pub(super) fn of(g: &Grid, start: usize, end: usize, line: isize) -> Ticks {
@@ -27,7 +38,33 @@ impl Ticks {
             reaches.sort_unstable_by_key(|r| r[side]);
             *t = reaches[reaches.len() / 2][side];
         }
-        Ticks { typical }
+        Ticks {
+            typical,
+            checkered: false,
+            thickness: [0; 2],
+        }
+    }
+
+    /// For a line with fewer than three ticks by [`Ticks::of`]: the line read as the edge of
+    /// a checkered bar (alternate boxes filled), where the black boxes may be half the line or
+    /// more and so set the median reach. "Typical" is then the lower quartile of the reach
+    /// over the columns where the line is inked (the white boxes' edge).
+    pub(super) fn of_checkered(g: &Grid, start: usize, end: usize, line: isize) -> Ticks {
+        let mut reaches: Vec<[usize; 2]> = (start..=end)
+            .filter(|&a| g.at(a, line))
+            .map(|a| reach(g, a, line))
+            .collect();
+        let (mut typical, mut thickness) = ([0; 2], [0; 2]);
+        for side in 0..2 {
+            reaches.sort_unstable_by_key(|r| r[side]);
+            typical[side] = reaches.get(reaches.len() / 4).map_or(0, |r| r[side]);
+            thickness[side] = reaches.get(reaches.len() * 3 / 4).map_or(0, |r| r[side]);
+        }
+        Ticks {
+            typical,
+            checkered: true,
+            thickness,
+        }
     }
 
     pub(super) fn at(&self, g: &Grid, along: usize, line: isize) -> bool {
@@ -52,8 +89,15 @@ impl Ticks {
 
     /// Centres of the runs of tick positions along the bar, with each tick's height (its
     /// farthest reach from the line).
-    pub(super) fn centres(&self, g: &Grid, start: usize, end: usize, line: isize) -> Vec<(f64, usize)> {
+    pub(super) fn centres(
+        &self,
+        g: &Grid,
+        start: usize,
+        end: usize,
+        line: isize,
+    ) -> Vec<(f64, usize)> {
         let mut centres = Vec::new();
+        let mut boxes = 0;
         let mut run: Option<(usize, usize)> = None;
         for a in start..=end + 1 {
             let t = a <= end && self.at(g, a, line);
@@ -62,12 +106,23 @@ impl Ticks {
                     let height = reach(g, a, line).into_iter().max().unwrap_or(0);
                     run = Some(run.map_or((a, height), |(s, h)| (s, h.max(height))));
                 }
+                (false, Some((s, height))) if self.checkered && a - s >= MIN_BOX => {
+                    boxes += 1;
+                    centres.push((s as f64, height));
+                    centres.push(((a - 1) as f64, height));
+                    run = None;
+                }
                 (false, Some((s, height))) => {
                     centres.push(((s + a - 1) as f64 / 2.0, height));
                     run = None;
                 }
                 _ => {}
             }
+        }
+        // Read as a checkered bar, a line without two black boxes is not one (thick lines and
+        // walls' edges would pass as thin ticked lines otherwise).
+        if self.checkered && boxes < MIN_BOXES {
+            centres.clear();
         }
         centres
     }
@@ -84,7 +139,7 @@ impl Ticks {
             let r = reach(g, a, line);
             for (side, dir) in [-1isize, 1].into_iter().enumerate() {
                 // From the line's own edge here: engraved lines wander by a pixel.
-                let from = r[side] as isize + 1;
+                let from = r[side].max(self.thickness[side]) as isize + 1;
                 if (from..from + 10).all(|k| !g.at(a, line + dir * k)) {
                     near[side] += 1;
                 }
