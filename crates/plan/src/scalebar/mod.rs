@@ -1,6 +1,7 @@
 //! Drawn scale bars (issue 11; §5.1.1 takes the drawing's scale as given): the longest ruled
-//! horizontal line with graduation ticks that stands apart from the castle, so that a user who
-//! reads its length off the drawing once gets a model in metres.
+//! horizontal line with graduation ticks that stands apart from the castle (a vertical one
+//! where there is none), so that a user who reads its length off the drawing once gets a
+//! model in metres.
 
 use image::GrayImage;
 use serde::Serialize;
