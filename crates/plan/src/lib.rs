@@ -45,6 +45,7 @@ pub mod eval;
 pub mod extrude;
 pub mod fit;
 pub mod graph;
+pub mod hachure_texture;
 pub mod hachures;
 pub mod hatching;
 mod inner_towers;
