@@ -136,13 +136,20 @@ mod tests {
             .count();
         assert_eq!(band_left, 0, "the inside of the band is gone");
         for (x, y) in [(21, 50), (50, 21), (48, 50), (78, 50), (50, 78)] {
-            assert_eq!(img.get_pixel(x, y)[0], 255, "room wall or partition at {x},{y}");
+            assert_eq!(
+                img.get_pixel(x, y)[0],
+                255,
+                "room wall or partition at {x},{y}"
+            );
         }
         assert_eq!(img.get_pixel(140, 12)[0], 255, "the thick wall");
         // Nothing outside the band changed.
         for (p, q) in img.enumerate_pixels().zip(before.enumerate_pixels()) {
             if p.2 != q.2 {
-                assert!((100..190).contains(&p.0) && (13..70).contains(&p.1), "{p:?}");
+                assert!(
+                    (100..190).contains(&p.0) && (13..70).contains(&p.1),
+                    "{p:?}"
+                );
             }
         }
     }
@@ -173,11 +180,13 @@ mod tests {
         // A solid block with four letter-sized holes far apart stays whole.
         let mut img = GrayImage::from_fn(120, 60, |x, y| {
             let hole = (y == 30 || y == 31) && [15, 45, 75, 105].contains(&x);
-            Luma([if (5..115).contains(&x) && (10..50).contains(&y) && !hole {
-                255
-            } else {
-                0
-            }])
+            Luma(
+                [if (5..115).contains(&x) && (10..50).contains(&y) && !hole {
+                    255
+                } else {
+                    0
+                }],
+            )
         });
         assert_eq!(drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4), 0);
     }
