@@ -2,7 +2,7 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--no-inner-towers]
-//! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--overlays DIR] [--all]`; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--overlays DIR] [--all] [--closed]`; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 use std::path::PathBuf;
@@ -103,14 +103,17 @@ fn all_plans(data: &std::path::Path, opts: &plan::Options) {
                         .any(|f| f.label == plan::label::Label::Courtyard),
                 );
                 by_kind[k][2] += usize::from(p.towers > 0);
-                closed += usize::from(
-                    p.faces
-                        .iter()
-                        .any(|f| f.label == plan::label::Label::Courtyard),
-                );
+                let has_courtyard = p
+                    .faces
+                    .iter()
+                    .any(|f| f.label == plan::label::Label::Courtyard);
+                closed += usize::from(has_courtyard);
                 towered += usize::from(p.towers > 0);
                 bars += usize::from(p.scale_bar.is_some());
                 marks += p.pre.dropped_marks;
+                if args_has("--closed") {
+                    println!("{f}\tclosed {}\ttowers {}", has_courtyard, p.towers);
+                }
                 if args_has("--bars") {
                     println!("{f}\t{:?}", p.scale_bar);
                 }

@@ -220,6 +220,13 @@ pub fn preprocess_clean(
         let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;
         stats.hachure_pixels =
             crate::hachures::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
+        // The specks step (2) would fill are what turn a band of merged hachures solid. A
+        // share of 0.175 (tried 0.15, 0.175, 0.2, 0.25 on the dev set, docs/plan.md) keeps the
+        // exact tower counts; at 0.15 densely hatched walls (Avignon 353) go too.
+        let window = (1.5 * t).round().max(4.0) as u32;
+        let core = t.ceil().clamp(3.0, 255.0) as u8;
+        stats.hachure_pixels +=
+            crate::hachure_texture::drop_hachure_texture(&mut img, window, core, min, 0.175, 4);
     }
     if cleanup.dashes {
         stats.dash_links =

@@ -45,6 +45,7 @@ pub mod eval;
 pub mod extrude;
 pub mod fit;
 pub mod graph;
+pub mod hachure_texture;
 pub mod hachures;
 pub mod hatching;
 mod inner_towers;
@@ -103,8 +104,10 @@ pub struct Options {
     /// whose walls are hatched. Off by default: on the development set (solid walls) it
     /// takes hachures for hatching and exact tower counts fall 6 → 4 (docs/plan.md).
     pub hatching: bool,
-    /// Remove hachured slopes and moats ([`hachures::drop_hachures`]) before §5.1.2's steps.
-    /// Off by default: with the dashes linked, exact tower counts fall 6 → 5 (docs/plan.md).
+    /// Remove hachured slopes and moats ([`hachures::drop_hachures`], then merged hachures by
+    /// [`hachure_texture::drop_hachure_texture`]) before §5.1.2's steps. Off by default: points
+    /// right 120 → 126 and exact towers stay 6, but closed outer walls fall 205 → 204 of 236
+    /// (docs/plan.md, "Hachures, second pass").
     pub hachures: bool,
     /// Join dotted and dashed lines ([`dashes::link_dashes`]) before the specks are removed
     /// (on: exact tower counts 5 → 6 on the development set, points unchanged).
