@@ -5,6 +5,8 @@
 //! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--overlays DIR] [--all] [--closed]`; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
+#[path = "../tests/common/mod.rs"]
+mod common;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -12,11 +14,9 @@ use plan::eval::{DevSet, score, table};
 
 fn main() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = root.join("../../../shared/data/castle_drawings_pd");
-    if !data.is_dir() {
-        eprintln!("skipped: {} not found", data.display());
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
     let text = std::fs::read_to_string(root.join("tests/data/devset.json")).unwrap();
     let set = DevSet::from_json(&text).unwrap();
     let args: Vec<String> = std::env::args().collect();

@@ -3,6 +3,8 @@
 //! counts, precision and recall, for all plans and by source (Armitage's and the others).
 //! Run: `cargo run --release -p plan --example scalebar_eval`.
 
+#[path = "../tests/common/mod.rs"]
+mod common;
 use std::path::PathBuf;
 
 use plan::scalebar::eval::{BarSet, Outcome, Tally, judge};
@@ -10,11 +12,9 @@ use rayon::prelude::*;
 
 fn main() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = root.join("../../../shared/data/castle_drawings_pd");
-    if !data.is_dir() {
-        eprintln!("skipped: {} not found", data.display());
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
     let set = BarSet::from_json(
         &std::fs::read_to_string(root.join("tests/data/scalebars.json")).unwrap(),
     )

@@ -3,15 +3,13 @@
 //! and length in pixels) or `-`, then how many were found. docs/plan.md has these bars checked
 //! by eye. Run: `cargo run --release -p plan --example scalebars`.
 
-use std::path::PathBuf;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn main() {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = root.join("../../../shared/data/castle_drawings_pd");
-    if !data.is_dir() {
-        eprintln!("skipped: {} not found", data.display());
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(data.join("manifest.json")).unwrap())
             .unwrap();

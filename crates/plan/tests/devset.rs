@@ -5,6 +5,7 @@
 //! `../shared/data/castle_drawings_pd` is absent. The table: `cargo run --release -p plan
 //! --example devset`.
 
+mod common;
 use std::path::PathBuf;
 
 use plan::eval::{DevSet, Totals, score, table};
@@ -13,14 +14,9 @@ use rayon::prelude::*;
 #[test]
 fn development_set_accuracy_does_not_fall() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = root.join("../../../shared/data/castle_drawings_pd");
-    if !data.is_dir() {
-        eprintln!(
-            "skipped: {} not found (the public-domain castle drawings of ../shared)",
-            data.display()
-        );
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
     let set =
         DevSet::from_json(&std::fs::read_to_string(root.join("tests/data/devset.json")).unwrap())
             .unwrap();

@@ -2,6 +2,8 @@
 //! between them (the engravers' convention, Loftie's White Tower) parses with
 //! `Options::hatching` as the same plan drawn solid does; without it the walls are lost.
 
+mod common;
+
 use image::{GrayImage, Luma};
 use plan::label::Label;
 use plan::synth::{Truth, castle};
@@ -83,16 +85,10 @@ fn issue11_hatched_walls_parse_like_solid_ones() {
 /// the outside at points read off the drawing (550 × 650 px).
 #[test]
 fn issue11_white_tower_walls_join_with_the_hatching_filled() {
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(
-        "../../../shared/data/castle_drawings_pd/plans/loftie_tower-of-london-white-tower_plan_plan-02.png",
-    );
-    if !file.is_file() {
-        eprintln!(
-            "skipped: {} not found (the public-domain castle drawings of ../shared)",
-            file.display()
-        );
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
+    let file = data.join("plans/loftie_tower-of-london-white-tower_plan_plan-02.png");
     let img = image::open(&file).unwrap();
     let parse = |hatching: bool| {
         let opts = Options {

@@ -4,6 +4,7 @@
 //! here. Skipped, with a message, when `../shared/data/castle_drawings_pd` is absent. The
 //! table: `cargo run --release -p plan --example scalebar_eval`.
 
+mod common;
 use std::path::PathBuf;
 
 use plan::scalebar::eval::{BarSet, Tally, judge};
@@ -12,14 +13,9 @@ use rayon::prelude::*;
 #[test]
 fn scale_bars_found_on_the_annotated_plans_do_not_fall() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = root.join("../../../shared/data/castle_drawings_pd");
-    if !data.is_dir() {
-        eprintln!(
-            "skipped: {} not found (the public-domain castle drawings of ../shared)",
-            data.display()
-        );
+    let Some(data) = common::castle_drawings() else {
         return;
-    }
+    };
     let set = BarSet::from_json(
         &std::fs::read_to_string(root.join("tests/data/scalebars.json")).unwrap(),
     )
