@@ -2,8 +2,9 @@
 //! [`crate::hachures`]. Such a band is one ink blob riddled with specks of paper, which step (2)
 //! fills, so the band turns into a solid wall; the stroke test never sees its strokes.
 
-use image::GrayImage;
+use image::{GrayImage, Rgb, RgbImage};
 use imageproc::distance_transform::{Norm, distance_transform};
+use imageproc::integral_image::{integral_image, sum_image_pixels};
 
 use crate::binarize::{Connectivity, components};
 
@@ -46,48 +47,37 @@ pub fn drop_hachure_texture(
         image::Luma([255 - img.get_pixel(x, y)[0]])
     });
     let to_paper = distance_transform(&paper_image, Norm::LInf);
-    // Speck pixels, one mark per speck (its first pixel in raster order) and solid-ink pixels,
-    // as integral images.
+    // Per pixel, as the three channels of one integral image: a speck pixel, the mark of a
+    // speck (its first pixel in raster order, so a window counts distinct specks), solid ink.
     let mut seen = vec![false; paper.sizes.len()];
-    let mut area = vec![0u32; (w + 1) * (h + 1)];
-    let mut count = vec![0u32; (w + 1) * (h + 1)];
-    let mut solid = vec![0u32; (w + 1) * (h + 1)];
-    for y in 0..h {
-        let (mut row_area, mut row_count, mut row_solid) = (0u32, 0u32, 0u32);
-        for x in 0..w {
-            let l = paper.labels[y * w + x] as usize;
-            row_solid += u32::from(to_paper.as_raw()[y * w + x] >= core);
-            if speck[l] {
-                row_area += 1;
-                if !seen[l] {
-                    seen[l] = true;
-                    row_count += 1;
-                }
-            }
-            let i = (y + 1) * (w + 1) + x + 1;
-            area[i] = area[i - w - 1] + row_area;
-            count[i] = count[i - w - 1] + row_count;
-            solid[i] = solid[i - w - 1] + row_solid;
-        }
-    }
-    let r = window as usize;
-    let sum = |t: &[u32], x0: usize, y0: usize, x1: usize, y1: usize| {
-        t[y1 * (w + 1) + x1] + t[y0 * (w + 1) + x0] - t[y0 * (w + 1) + x1] - t[y1 * (w + 1) + x0]
-    };
+    let marks = RgbImage::from_fn(img.width(), img.height(), |x, y| {
+        let i = y as usize * w + x as usize;
+        let l = paper.labels[i] as usize;
+        let first = speck[l] && !std::mem::replace(&mut seen[l], true);
+        Rgb([
+            u8::from(speck[l]),
+            u8::from(first),
+            u8::from(to_paper.as_raw()[i] >= core),
+        ])
+    });
+    let sums = integral_image::<_, u32>(&marks);
+    let r = window;
+    let (wu, hu) = (img.width(), img.height());
     let mut drop = Vec::new();
-    for y in 0..h {
-        let (y0, y1) = (y.saturating_sub(r), (y + r + 1).min(h));
-        for x in 0..w {
-            if img.as_raw()[y * w + x] != 255 {
+    for y in 0..hu {
+        let (y0, y1) = (y.saturating_sub(r), (y + r).min(hu - 1));
+        for x in 0..wu {
+            if img.get_pixel(x, y)[0] != 255 {
                 continue;
             }
-            let (x0, x1) = (x.saturating_sub(r), (x + r + 1).min(w));
-            let cells = ((x1 - x0) * (y1 - y0)) as f64;
-            if f64::from(sum(&area, x0, y0, x1, y1)) >= min_speck_share * cells
-                && sum(&count, x0, y0, x1, y1) as usize >= min_specks
-                && sum(&solid, x0, y0, x1, y1) == 0
+            let (x0, x1) = (x.saturating_sub(r), (x + r).min(wu - 1));
+            let cells = f64::from((x1 - x0 + 1) * (y1 - y0 + 1));
+            let [area, count, solid] = sum_image_pixels(&sums, x0, y0, x1, y1);
+            if f64::from(area) >= min_speck_share * cells
+                && count as usize >= min_specks
+                && solid == 0
             {
-                drop.push(y * w + x);
+                drop.push(y as usize * w + x as usize);
             }
         }
     }
