@@ -33,6 +33,20 @@ const MAX_CHORD: f64 = 10.0;
 /// The outline beside a bulge may stray from the chord's line by this fraction of its depth.
 const FLANK_TOLERANCE: f64 = 0.2;
 
+/// The curtain's thickness from the outer walls' (thickness, skeleton length) pairs, which
+/// it sorts by thickness: the lower quartile by length, since an edge's thickness is averaged
+/// along its chain, towers included. `None` without outer walls. Shared by this finder and
+/// the inner-ward towers' wall test (`inner_towers`).
+pub(crate) fn curtain_thickness(outer: &mut [(f64, usize)]) -> Option<f64> {
+    outer.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: usize = outer.iter().map(|e| e.1).sum();
+    let mut run = 0;
+    outer.iter().find_map(|&(t, n)| {
+        run += n;
+        (4 * run >= total).then_some(t)
+    })
+}
+
 /// Bulges of the castle's outline that are towers. `labels` holds a label index per pixel
 /// (row-major, `width` wide); `curtain` is the outer wall's thickness in pixels. Bulges on
 /// tower walls already labelled are left out, so nothing is counted twice.

@@ -89,23 +89,14 @@ pub(crate) fn find(
     found
 }
 
-/// The curtain's thickness: the outer walls' at the lower quartile of their length (an edge's
-/// mean thickness includes the towers on it), as `bulges` measures it.
+/// The curtain's thickness as [`crate::bulges::curtain_thickness`] takes it, from the edges
+/// labelled outer wall so far; 0 without any.
 fn curtain_thickness(s: &Scene, el: &[Option<Label>]) -> f64 {
     let mut outer: Vec<(f64, usize)> = (0..el.len())
         .filter(|&e| el[e] == Some(Label::CastleOuterWall))
         .map(|e| (s.thickness[e], s.graph.edges[e].points.len()))
         .collect();
-    outer.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let total: usize = outer.iter().map(|e| e.1).sum();
-    let mut run = 0;
-    outer
-        .iter()
-        .find_map(|&(t, n)| {
-            run += n;
-            (4 * run >= total).then_some(t)
-        })
-        .unwrap_or(0.0)
+    crate::bulges::curtain_thickness(&mut outer).unwrap_or(0.0)
 }
 
 /// Thickness of the bulging wall: the thinnest of the runs of wall pixels, along the apex's

@@ -556,20 +556,12 @@ fn find_bulge_towers(
     walls: &Mask,
     edges: &[PlanEdge],
 ) -> Vec<bulges::BulgeTower> {
-    // An edge's thickness is averaged along its chain, towers included, so the curtain is
-    // taken at the lower quartile of the outer wall's length.
     let mut outer: Vec<(f64, usize)> = edges
         .iter()
         .filter(|e| e.label == Label::CastleOuterWall)
         .map(|e| (e.thickness, e.points.len()))
         .collect();
-    outer.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let total: usize = outer.iter().map(|e| e.1).sum();
-    let mut run = 0;
-    let Some(curtain) = outer.iter().find_map(|&(t, n)| {
-        run += n;
-        (4 * run >= total).then_some(t)
-    }) else {
+    let Some(curtain) = bulges::curtain_thickness(&mut outer) else {
         return Vec::new();
     };
     let mut towers = bulges::find(labels, walls.width, walls.height, curtain);
@@ -578,7 +570,7 @@ fn find_bulge_towers(
     // edges, as integration takes the curtain) were, on the development set, exactly the
     // letter O on Sully's plan and a dot on the Tower of London's (2.8 and 3.6 px against
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
-    let median = outer[outer.len() / 2].0;
+    let median = outer[outer.len() / 2].0; // `outer` is sorted by thickness now
     towers.retain(|t| t.radius >= 0.4 * median);
     let w = walls.width as usize;
     for t in &towers {
