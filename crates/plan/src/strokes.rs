@@ -1,6 +1,6 @@
-//! Shape of small regions (a stroke of ink or a sliver of paper) from their second moments,
-//! and a grid to find their neighbours: shared by the clean-up steps added to §5.1.2 that
-//! recognise patterns of strokes ([`crate::hatching`], [`crate::hachures`], [`crate::dashes`]).
+//! Shape of small regions (strokes of ink) from their second moments, and a grid to find
+//! their neighbours: shared by the clean-up steps added to §5.1.2 that recognise patterns of
+//! strokes ([`crate::hachures`], [`crate::dashes`]).
 
 use crate::binarize::Components;
 
