@@ -101,8 +101,7 @@ fn evaluate_sequence(
     let mut homographies = Vec::new();
     for k in 2..=paths.len() {
         let p = dir.join(format!("H1to{k}p"));
-        let text =
-            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        let text = crate::text::read_text(&p)?;
         homographies.push(Homography::parse(&text).map_err(|e| anyhow!("{}: {e}", p.display()))?);
     }
     let grays: Vec<Gray> = paths.iter().map(|p| read_gray(p)).collect::<Result<_>>()?;
@@ -136,10 +135,7 @@ fn evaluate_sequence(
     let mut runs = vec![ipfit];
     if let Some(peer_dir) = &args.peers {
         let p = peer_dir.join(format!("{name}.json"));
-        let text =
-            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
-        let peers: PeerFile = serde_json::from_str(&text)
-            .with_context(|| format!("{}: not a peer file", p.display()))?;
+        let peers: PeerFile = crate::text::read_json(&p, "a peer file")?;
         for (det, points) in peers.detectors {
             if points.len() != paths.len() {
                 bail!(

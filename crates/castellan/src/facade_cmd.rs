@@ -1,7 +1,7 @@
 //! `castellan facade`: a rectified façade image and TRAINING.json → FACADE.json (façades, floors,
 //! windows, the 18 parameters of §3.1.6), LABELS.png and an overlay.
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use clap::Args;
 use facade::classify::{self, ClassifyParams, FeatureParams, Training};
 use facade::search::{self, SearchParams};
@@ -16,10 +16,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
     let file = args.image.display().to_string();
     let img = read_rgb(&args.image)?;
     let tfile = args.training.display().to_string();
-    let text =
-        std::fs::read_to_string(&args.training).with_context(|| format!("cannot read {tfile}"))?;
-    let training: Training =
-        serde_json::from_str(&text).with_context(|| format!("{tfile}: not a TRAINING.json"))?;
+    let training: Training = crate::text::read_json(&args.training, "a TRAINING.json")?;
     training
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;

@@ -107,9 +107,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
 /// and wall boxes are required.
 fn read_training(path: &Path, img: &RgbImage) -> Result<Training> {
     let tfile = path.display().to_string();
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {tfile}"))?;
-    let training: Training =
-        serde_json::from_str(&text).with_context(|| format!("{tfile}: not a TRAINING.json"))?;
+    let training: Training = crate::text::read_json(path, "a TRAINING.json")?;
     training
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;

@@ -5,26 +5,103 @@ use std::path::Path;
 
 use anyhow::{Context, Result, anyhow};
 
-/// Largest side accepted, in pixels: far above any scan or photo castellan works on.
+/// The pixel budget of every command and of `castellan serve`: the most pixels an input image
+/// may have (50 Mpx takes an 8000 × 6000 phone photo). It bounds peak memory: the heaviest stage
+/// keeps about 16 bytes a pixel (docs/limits.md has the figure per command). Larger images are
+/// refused before they are decoded, with a message naming the image and the budget.
+pub const PIXEL_BUDGET: u64 = 50_000_000;
+/// Largest side accepted, in pixels (a 20 000 × 2 500 panorama still fits the budget).
 pub const MAX_SIDE: u32 = 20_000;
-/// Most bytes a decoder may allocate.
-pub const MAX_ALLOC: u64 = 2 << 30;
+/// Most bytes a decoder may allocate: the budget's pixels at 4 channels of 16 bits, and some.
+pub const MAX_ALLOC: u64 = 512 << 20;
+/// Largest image file read, in bytes (a 50 Mpx 16-bit RGBA PNG stored without compression).
+pub const MAX_FILE_BYTES: u64 = 512 << 20;
 
 /// Reads any supported image (PNG, JPEG, PNM), naming the file in every error.
 pub fn read_image(path: &Path) -> Result<image::DynamicImage> {
+    let name = path.display().to_string();
+    let bytes = read_bounded(path)?;
+    Ok(decode(&bytes, &name)?.0)
+}
+
+/// The file's bytes, refusing files over [`MAX_FILE_BYTES`] (and endless ones like /dev/zero).
+fn read_bounded(path: &Path) -> Result<Vec<u8>> {
+    use std::io::Read;
     let name = path.display();
-    let mut reader = image::ImageReader::open(path)
-        .with_context(|| format!("cannot read {name}"))?
+    let file = std::fs::File::open(path).with_context(|| format!("cannot read {name}"))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("cannot read {name}"))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(anyhow!(
+            "{name}: larger than {} MiB, the largest image file castellan reads",
+            MAX_FILE_BYTES >> 20
+        ));
+    }
+    Ok(bytes)
+}
+
+/// Decodes image bytes (`name` names them in errors) within the pixel budget, returning the
+/// format found. The size is read from the header and checked before any pixel is decoded.
+pub fn decode(bytes: &[u8], name: &str) -> Result<(image::DynamicImage, image::ImageFormat)> {
+    let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .with_context(|| format!("cannot read {name}"))?;
+    let format = reader
+        .format()
+        .ok_or_else(|| anyhow!("{name}: not an image castellan reads (PNG, JPEG or PNM)"))?;
+    let (w, h) = reader
+        .into_dimensions()
+        .map_err(|e| anyhow!("{name}: not a readable image ({e})"))?;
+    check_budget(w, h, name)?;
+    if format == image::ImageFormat::Jpeg && !jpeg_is_complete(bytes) {
+        return Err(anyhow!(
+            "{name}: the JPEG file is cut short (no end-of-image marker after its last scan); \
+             copy it again from its source"
+        ));
+    }
+    let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+    reader.limits(limits());
+    let img = reader
+        .decode()
+        .map_err(|e| anyhow!("{name}: not a readable image ({e})"))?;
+    Ok((img, format))
+}
+
+/// Refuses a `w` × `h` image over the pixel budget or [`MAX_SIDE`].
+pub fn check_budget(w: u32, h: u32, name: &str) -> Result<()> {
+    let pixels = u64::from(w) * u64::from(h);
+    if pixels > PIXEL_BUDGET || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(anyhow!(
+            "{name}: {w} × {h} pixels ({:.1} Mpx) is over castellan's pixel budget of {} Mpx \
+             (at most {MAX_SIDE} px a side); scale the image down first",
+            pixels as f64 / 1e6,
+            PIXEL_BUDGET / 1_000_000
+        ));
+    }
+    Ok(())
+}
+
+/// The decoder limits that go with the budget.
+fn limits() -> image::Limits {
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_SIDE);
     limits.max_image_height = Some(MAX_SIDE);
     limits.max_alloc = Some(MAX_ALLOC);
-    reader.limits(limits);
-    reader
-        .decode()
-        .map_err(|e| anyhow!("{name}: not a readable image ({e})"))
+    limits
+}
+
+/// Whether a JPEG stream ends: an end-of-image marker (FF D9) after the start of its last scan
+/// (FF DA). The decoder fills a truncated scan with grey without an error, so it is checked
+/// here. Inside entropy-coded data FF is always followed by 00 or a restart marker, so FF D9
+/// can only be the real end.
+fn jpeg_is_complete(bytes: &[u8]) -> bool {
+    let last_scan = bytes.windows(2).rposition(|w| w == [0xFF, 0xDA]);
+    match last_scan {
+        None => false,
+        Some(i) => bytes[i..].windows(2).any(|w| w == [0xFF, 0xD9]),
+    }
 }
 
 /// PNG bytes of an 8-bit image buffer; `path` names the output in errors.
@@ -68,5 +145,42 @@ mod tests {
         std::fs::write(&wide, b"P5\n30000 1\n255\n").unwrap();
         let e = format!("{:#}", read_image(&wide).unwrap_err());
         assert!(e.contains("wide.pgm"), "{e}");
+    }
+
+    /// A 570 KB PNG of 20 000 × 20 000 grey pixels once took 3–7 GB in every command.
+    #[test]
+    fn an_image_over_the_pixel_budget_is_refused_before_decoding() {
+        let dir = tempfile::tempdir().unwrap();
+        let big = dir.path().join("big.pgm");
+        // 20 000 x 20 000 declared, no pixel data: only the header may be read.
+        std::fs::write(&big, b"P5\n20000 20000\n255\n").unwrap();
+        let e = format!("{:#}", read_image(&big).unwrap_err());
+        assert!(
+            e.contains("big.pgm: 20000 × 20000 pixels (400.0 Mpx) is over"),
+            "{e}"
+        );
+        assert!(e.contains("budget of 50 Mpx"), "{e}");
+        // One pixel under the budget's side passes the check.
+        assert!(check_budget(10_000, 5_000, "x").is_ok());
+        assert!(check_budget(10_000, 5_001, "x").is_err());
+        assert!(check_budget(20_001, 1, "x").is_err());
+    }
+
+    #[test]
+    fn a_truncated_jpeg_is_refused() {
+        let img =
+            image::RgbImage::from_fn(64, 48, |x, y| image::Rgb([x as u8 * 3, y as u8 * 5, 90]));
+        let mut buf = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut buf, image::ImageFormat::Jpeg).unwrap();
+        let whole = buf.into_inner();
+        assert!(decode(&whole, "ok.jpg").is_ok());
+        let cut = &whole[..whole.len() * 2 / 3];
+        let e = format!("{:#}", decode(cut, "cut.jpg").unwrap_err());
+        assert!(e.contains("cut.jpg: the JPEG file is cut short"), "{e}");
+        // A PNG cut short is an error of the decoder itself.
+        let mut buf = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut buf, image::ImageFormat::Png).unwrap();
+        let png = buf.into_inner();
+        assert!(decode(&png[..png.len() / 2], "cut.png").is_err());
     }
 }

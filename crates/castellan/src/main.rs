@@ -14,6 +14,7 @@ mod reconstruct_cmd;
 mod rectify_cmd;
 mod report;
 mod serve;
+mod text;
 mod vsg_cmd;
 
 use std::process::ExitCode;

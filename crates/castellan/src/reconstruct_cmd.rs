@@ -82,8 +82,7 @@ fn progress(steps: u64) -> indicatif::ProgressBar {
 /// Runs the whole pipeline and writes OUTDIR.
 pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Result<Summary> {
     let name = project_path.display().to_string();
-    let text =
-        std::fs::read_to_string(project_path).with_context(|| format!("cannot read {name}"))?;
+    let text = crate::text::read_text(project_path)?;
     let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
     let dir = project_path.parent().unwrap_or(Path::new("")).to_path_buf();
     let seed = seed.or(project.seed).unwrap_or(0);
@@ -136,7 +135,8 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
             let (image, lines) = read_photo(&dir, &f.image, f.lines.as_deref(), &at)?;
             let training = match &f.training {
                 TrainingSource::Inline(t) => t.clone(),
-                TrainingSource::File(p) => read_json(&dir.join(p)).with_context(|| at.clone())?,
+                TrainingSource::File(p) => crate::text::read_json(&dir.join(p), "a TRAINING.json")
+                    .with_context(|| at.clone())?,
             };
             Ok((image, training, lines))
         })
@@ -390,7 +390,9 @@ fn read_photo(
 ) -> Result<(image::RgbImage, Option<facade::rectify::ManualLines>)> {
     let photo = read_image(&dir.join(image)).with_context(|| at.to_string())?;
     let lines = match lines {
-        Some(p) => Some(read_json(&dir.join(p)).with_context(|| at.to_string())?),
+        Some(p) => Some(
+            crate::text::read_json(&dir.join(p), "a LINES.json").with_context(|| at.to_string())?,
+        ),
         None => None,
     };
     Ok((photo.to_rgb8(), lines))
@@ -414,13 +416,6 @@ fn add_lines_overlay(
         );
     }
     Ok(())
-}
-
-fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    serde_json::from_str(&text)
-        .map_err(|e| anyhow!("{}:{}:{}: {e}", path.display(), e.line(), e.column()))
 }
 
 #[cfg(test)]

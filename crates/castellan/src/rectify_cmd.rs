@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use clap::Args;
 use facade::rectify::{self, ManualLines, RectifyParams};
 
@@ -27,10 +27,7 @@ pub fn run(args: &RectifyArgs) -> Result<()> {
     };
     let r = match &args.lines {
         Some(lines_path) => {
-            let text = std::fs::read_to_string(lines_path)
-                .with_context(|| format!("cannot read {}", lines_path.display()))?;
-            let lines: ManualLines = serde_json::from_str(&text)
-                .with_context(|| format!("{}: not a LINES.json", lines_path.display()))?;
+            let lines: ManualLines = crate::text::read_json(lines_path, "a LINES.json")?;
             rectify::rectify_with_lines(img.width(), img.height(), &lines, &params)
                 .map_err(|e| anyhow!("{}: {e}", lines_path.display()))?
         }

@@ -72,7 +72,7 @@ pub struct Options {
     /// A face loop takes a circle or rectangle when its mean error is under this fraction of
     /// its radius / half-side (§5.1.5 "accurate enough").
     pub face_tolerance: f64,
-    /// Larger images are refused (pixels).
+    /// Larger images are refused (pixels); the default is the `castellan` binary's pixel budget.
     pub max_pixels: u64,
     /// Drawings whose longer side is under this many pixels are parsed enlarged (by an integer
     /// factor, at most 2 so that 1-px grid lines stay thinner than the 3 × 3 element) so that
@@ -119,7 +119,7 @@ impl Default for Options {
         Options {
             min_region: 0.0005,
             face_tolerance: 0.06,
-            max_pixels: 40_000_000,
+            max_pixels: 50_000_000,
             upsample_below: 1000,
             close_gaps: true,
             inner_ward_towers: true,
