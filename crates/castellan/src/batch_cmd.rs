@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::images::png;
-use crate::output::Outputs;
+use crate::output::FolderWriter;
 
 /// One drawing's line of `summary.csv`.
 #[derive(Debug, Default)]
@@ -54,37 +54,80 @@ fn quote(s: &str) -> String {
     }
 }
 
-/// Every regular file in `dir`, sorted by name (the summary's order does not depend on the
-/// file system or on which thread finished first).
-fn list_files(dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut files = Vec::new();
+/// Every entry of `dir`, sorted by name (the summary's order does not depend on the file
+/// system or on which thread finished first), each with the reason it is not parsed, if any:
+/// folders are not searched, and links that lead nowhere, FIFOs and devices are not opened (a
+/// FIFO would block the batch), but each gets its row in summary.csv.
+fn list_entries(dir: &Path) -> Result<Vec<(PathBuf, Option<String>)>> {
+    let mut entries = Vec::new();
     for entry in std::fs::read_dir(dir).with_context(|| format!("cannot read {}", dir.display()))? {
         let entry = entry.with_context(|| format!("cannot read {}", dir.display()))?;
         let path = entry.path();
-        if path.is_file() {
-            files.push(path);
-        }
+        let skip = match std::fs::metadata(&path) {
+            Err(e) if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_symlink()) => {
+                Some(format!("a link that leads to no file ({e})"))
+            }
+            Err(e) => Some(format!("cannot read ({e})")),
+            Ok(m) if m.is_dir() => Some("a folder: sub-folders are not searched".to_string()),
+            Ok(m) if !m.is_file() => {
+                Some("not a regular file (a FIFO, socket or device): not opened".to_string())
+            }
+            Ok(_) => None,
+        };
+        entries.push((path, skip));
     }
-    files.sort();
-    Ok(files)
+    entries.sort();
+    Ok(entries)
+}
+
+/// The output stem of each file: its name without the extension, or the whole name where two
+/// files share a stem (`same.png` and `same.jpg` give `same.png.plan.json` and
+/// `same.jpg.plan.json` rather than overwriting each other).
+fn output_stems(files: &[&Path]) -> Vec<String> {
+    let stem = |p: &Path| {
+        p.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    let name = |p: &Path| {
+        p.file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    files
+        .iter()
+        .map(|p| {
+            let shared = files.iter().filter(|q| stem(q) == stem(p)).count() > 1;
+            if shared { name(p) } else { stem(p) }
+        })
+        .collect()
 }
 
 pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options) -> Result<()> {
-    let files = list_files(dir)?;
-    if files.is_empty() {
+    let entries = list_entries(dir)?;
+    if entries.iter().all(|(_, skip)| skip.is_some()) {
         bail!("{}: the folder holds no files to parse", dir.display());
     }
-    std::fs::create_dir_all(out_dir)
-        .with_context(|| format!("cannot create folder {}", out_dir.display()))?;
-    let bar = ProgressBar::new(files.len() as u64);
+    let files: Vec<&Path> = entries.iter().map(|(p, _)| p.as_path()).collect();
+    let stems = output_stems(&files);
+    let writer = FolderWriter::begin(out_dir)?;
+    let bar = ProgressBar::new(entries.len() as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} drawings, {elapsed} ({eta} left)")
             .expect("the progress template is a constant"),
     );
-    let rows: Vec<Row> = files
+    let rows: Vec<Row> = entries
         .par_iter()
-        .map(|path| {
-            let row = one_drawing(path, out_dir, scale, opts);
+        .zip(&stems)
+        .map(|((path, skip), stem)| {
+            let row = match skip {
+                None => one_drawing(path, stem, &writer, scale, opts),
+                Some(reason) => Row {
+                    file: file_name(path),
+                    reason: reason.clone(),
+                    ..Row::default()
+                },
+            };
             bar.inc(1);
             row
         })
@@ -98,9 +141,8 @@ pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options)
         csv.push('\n');
     }
     let summary = out_dir.join("summary.csv");
-    let mut outputs = Outputs::default();
-    outputs.add(&summary, csv.into_bytes());
-    outputs.commit()?;
+    writer.write_group(vec![(summary.clone(), csv.into_bytes())])?;
+    writer.finish()?;
 
     let ok = rows.iter().filter(|r| r.success).count();
     let closed = rows.iter().filter(|r| r.closed_outer_wall).count();
@@ -119,14 +161,17 @@ pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options)
 
 /// Parses one drawing and writes its outputs; every failure, a panic included, becomes the
 /// row's reason instead of stopping the batch.
-fn one_drawing(path: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options) -> Row {
-    let file = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+fn one_drawing(
+    path: &Path,
+    stem: &str,
+    writer: &FolderWriter,
+    scale: Option<f64>,
+    opts: &plan::Options,
+) -> Row {
+    let file = file_name(path);
     let started = Instant::now();
     let result = catch_unwind(AssertUnwindSafe(|| {
-        parse_and_write(path, &file, out_dir, scale, opts)
+        parse_and_write(path, &file, stem, writer, scale, opts)
     }))
     .unwrap_or_else(|_| Err(anyhow!("internal error (panic) while parsing")));
     let time_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -147,30 +192,27 @@ fn one_drawing(path: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Opt
 fn parse_and_write(
     path: &Path,
     file: &str,
-    out_dir: &Path,
+    stem: &str,
+    writer: &FolderWriter,
     scale: Option<f64>,
     opts: &plan::Options,
 ) -> Result<Row> {
     let img = crate::images::read_image(path)?;
     let parsed = plan::parse(&img, opts).map_err(|e| anyhow!("{e}"))?;
-    let stem = Path::new(file)
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| file.to_string());
-    let out = |suffix: &str| out_dir.join(format!("{stem}.{suffix}"));
-    let mut outputs = Outputs::default();
+    let out = |suffix: &str| PathBuf::from(format!("{stem}.{suffix}"));
     let doc = plan::output::plan_json(&parsed, scale);
-    outputs.add(&out("plan.json"), serde_json::to_vec_pretty(&doc)?);
     let labels_path = out("labels.png");
-    outputs.add(
-        &labels_path,
-        png(&plan::output::labels_image(&parsed), &labels_path)?,
-    );
     let overlay_path = out("overlay.png");
     let over = plan::output::overlay(&parsed, &img.to_luma8());
-    outputs.add(&overlay_path, png(&over, &overlay_path)?);
-    outputs.add(&out("svg"), plan::output::svg(&parsed).into_bytes());
-    outputs.commit()?;
+    writer.write_group(vec![
+        (out("plan.json"), serde_json::to_vec_pretty(&doc)?),
+        (
+            labels_path.clone(),
+            png(&plan::output::labels_image(&parsed), &labels_path)?,
+        ),
+        (overlay_path.clone(), png(&over, &overlay_path)?),
+        (out("svg"), plan::output::svg(&parsed).into_bytes()),
+    ])?;
 
     use plan::label::Label;
     let has = |l: Label| parsed.faces.iter().any(|f| f.label == l);
@@ -193,9 +235,57 @@ fn parse_and_write(
     })
 }
 
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn files_sharing_a_stem_get_outputs_named_after_their_whole_name() {
+        let files = [
+            Path::new("d/same.png"),
+            Path::new("d/same.jpg"),
+            Path::new("d/other.png"),
+        ];
+        assert_eq!(output_stems(&files), ["same.png", "same.jpg", "other"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_folders_and_fifos_each_get_a_reason_and_are_not_opened() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::write(d.join("a.png"), b"x").unwrap();
+        std::fs::create_dir(d.join("sub")).unwrap();
+        std::os::unix::fs::symlink(d.join("missing.png"), d.join("dangling.png")).unwrap();
+        std::os::unix::fs::symlink(d.join("loop2"), d.join("loop1")).unwrap();
+        std::os::unix::fs::symlink(d.join("loop1"), d.join("loop2")).unwrap();
+        let status = std::process::Command::new("mkfifo")
+            .arg(d.join("pipe.png"))
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let entries = list_entries(d).unwrap();
+        let reason = |n: &str| {
+            entries
+                .iter()
+                .find(|(p, _)| p.file_name().unwrap() == n)
+                .unwrap()
+                .1
+                .clone()
+        };
+        assert_eq!(entries.len(), 6);
+        assert_eq!(reason("a.png"), None);
+        assert!(reason("sub").unwrap().contains("folder"));
+        assert!(reason("dangling.png").unwrap().contains("leads to no file"));
+        assert!(reason("loop1").unwrap().contains("leads to no file"));
+        assert!(reason("pipe.png").unwrap().contains("FIFO"));
+    }
 
     #[test]
     fn csv_fields_with_commas_and_quotes_are_quoted() {

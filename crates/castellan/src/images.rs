@@ -48,9 +48,9 @@ pub fn decode(bytes: &[u8], name: &str) -> Result<(image::DynamicImage, image::I
     let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .with_context(|| format!("cannot read {name}"))?;
-    let format = reader
-        .format()
-        .ok_or_else(|| anyhow!("{name}: not an image castellan reads (PNG, JPEG or PNM)"))?;
+    let format = reader.format().ok_or_else(|| {
+        anyhow!("{name}: not a readable image (castellan reads PNG, JPEG and PNM)")
+    })?;
     let (w, h) = reader
         .into_dimensions()
         .map_err(|e| anyhow!("{name}: not a readable image ({e})"))?;

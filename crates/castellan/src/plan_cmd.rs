@@ -133,7 +133,7 @@ pub struct PlanArgs {
     pub scale: Option<f64>,
     /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
     /// and the scale (metres per pixel) follows from its length in pixels.
-    #[arg(long, value_name = "METRES", value_parser = parse_scale, conflicts_with_all = ["scale", "batch"])]
+    #[arg(long, value_name = "METRES", value_parser = parse_bar_metres, conflicts_with_all = ["scale", "batch"])]
     pub scale_bar: Option<f64>,
     /// Remove vault ribs: lines thinner than this fraction of the wall thickness drawn across
     /// a room that is round without them (0.3 finds Coucy's four corner towers round; off by
@@ -183,13 +183,19 @@ fn parse_fraction(s: &str) -> Result<f64, String> {
 }
 
 fn parse_scale(s: &str) -> Result<f64, String> {
+    parse_in(s, &plan::METRES_PER_PIXEL, "scale in metres per pixel")
+}
+
+fn parse_bar_metres(s: &str) -> Result<f64, String> {
+    parse_in(s, &plan::SCALE_BAR_METRES, "scale-bar length in metres")
+}
+
+fn parse_in(s: &str, range: &std::ops::RangeInclusive<f64>, unit: &str) -> Result<f64, String> {
     let v: f64 = s
         .trim()
         .parse()
         .map_err(|_| format!("'{s}' is not a number"))?;
-    if !(v.is_finite() && v > 0.0) {
-        return Err(format!("the scale must be a positive number, found '{s}'"));
-    }
+    plan::check_range(v, range, unit)?;
     Ok(v)
 }
 
@@ -285,6 +291,13 @@ mod flag_tests {
         assert!(plan_args(&["--scale", "0"]).is_err());
         assert!(plan_args(&["--scale", "-1"]).is_err());
         assert!(plan_args(&["--scale", "nan"]).is_err());
+        // Issue 19: a scale that would overflow the model is refused at the flag.
+        let e = plan_args(&["--scale", "1e300"]).unwrap_err().to_string();
+        assert!(
+            e.contains("not a plausible scale in metres per pixel"),
+            "{e}"
+        );
+        assert!(plan_args(&["--scale", "1e-9"]).is_err());
     }
 
     #[test]

@@ -88,7 +88,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let seed = seed.or(project.seed).unwrap_or(0);
     let bar = progress(4 + (project.facades.len() + project.gothics.len()) as u64);
     let mut stages: Vec<(String, f64)> = Vec::new();
-    let mut outputs = Outputs::default();
+    let mut outputs = Outputs::folder(outdir);
 
     bar.set_message("plan drawing (ch. 5)");
     let t = Instant::now();

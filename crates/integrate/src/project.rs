@@ -167,17 +167,15 @@ impl Project {
             return bad("plan: the plan drawing's file name is empty".into());
         }
         if let Some(s) = self.scale
-            && !(s.is_finite() && s > 0.0)
+            && let Err(why) = plan::check_range(s, &plan::METRES_PER_PIXEL, "metres per plan pixel")
         {
-            return bad(format!(
-                "scale = {s}: metres per plan pixel must be a positive number"
-            ));
+            return bad(format!("scale = {s}: {why}"));
         }
         if let Some(m) = self.scale_bar {
-            if !(m.is_finite() && m > 0.0) {
-                return bad(format!(
-                    "scale_bar = {m}: the bar's length in metres must be a positive number"
-                ));
+            if let Err(why) =
+                plan::check_range(m, &plan::SCALE_BAR_METRES, "scale-bar length in metres")
+            {
+                return bad(format!("scale_bar = {m}: {why}"));
             }
             if self.scale.is_some() {
                 return bad("give either scale (metres per pixel) or scale_bar (the drawn bar's length in metres), not both".into());
@@ -214,9 +212,11 @@ impl Project {
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
-            if f.scale.is_some_and(|m| !(m.is_finite() && m > 0.0)) {
-                let problem = "scale must be a positive number of metres per pixel";
-                return entry("facade", i, &f.image, problem);
+            if let Some(Err(why)) = f
+                .scale
+                .map(|m| plan::check_range(m, &plan::METRES_PER_PIXEL, "metres per pixel"))
+            {
+                return entry("facade", i, &f.image, &format!("scale: {why}"));
             }
             if f.bbox.is_some_and(|b| !is_box(&b)) {
                 return entry("facade", i, &f.image, NOT_A_BOX);
@@ -370,6 +370,28 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("thin_lines = 2"), "{e}");
+    }
+
+    /// Issue 19: `scale = 1e300` once surfaced as an internal error of the generated program.
+    #[test]
+    fn an_implausible_scale_is_refused_naming_the_entry() {
+        for bad in ["scale = 1e300", "scale = 1e-300", "scale = inf"] {
+            let e = Project::from_toml(&GOOD.replace("scale = 0.05", bad))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("scale = ") && e.contains("not a plausible"),
+                "{e}"
+            );
+        }
+        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale_bar = 1e12"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("scale_bar = ") && e.contains("not a plausible"),
+            "{e}"
+        );
+        assert!(Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 100")).is_ok());
     }
 
     /// Issue 11: a measured elevation's outline and scale are checked like the plan's.
