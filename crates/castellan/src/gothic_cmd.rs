@@ -34,6 +34,34 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         .map(|t| read_training(t, &img))
         .transpose()?;
     let started = Instant::now();
+    let bar = indicatif::ProgressBar::new(1);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    // Ticks on its own so the elapsed time moves while one slow shape is being fitted.
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+    let show = |p: facade::gothic::Progress| match p {
+        facade::gothic::Progress::Edges => bar.set_message("edges (§4.2)"),
+        facade::gothic::Progress::Detecting { done, total } => {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message("shapes fitted (eq. 4.2)");
+        }
+        facade::gothic::Progress::Organising {
+            level,
+            of,
+            done,
+            total,
+        } => {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message(format!(
+                "groups and enclosing arches, round {level} of at most {of}"
+            ));
+        }
+    };
     let est = match &training {
         Some(t) => facade::gothic::classes::estimate_with_classes(
             &img,
@@ -42,9 +70,10 @@ pub fn run(args: &GothicArgs) -> Result<()> {
             &ClassifyParams::default(),
             &ClassMapParams::default(),
         ),
-        None => facade::gothic::estimate(&img, &params),
+        None => facade::gothic::estimate_with_progress(&img, &params, &show),
     }
     .map_err(|e| anyhow!("{file}: {e}"))?;
+    bar.finish_and_clear();
     let masonry = (args.masonry.is_some() || args.model.is_some())
         .then(|| masonry::segment(&img, &est, &MasonryParams::default()));
     let elapsed = started.elapsed();

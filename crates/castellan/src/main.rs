@@ -6,6 +6,8 @@ mod cli;
 mod corners_cmd;
 mod demo_cmd;
 mod facade_cmd;
+#[cfg(test)]
+mod fuzz_tests;
 mod gothic_cmd;
 mod images;
 mod output;
@@ -23,7 +25,19 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();
-    let result = match cli.command {
+    output::clean_up_on_interrupt();
+    match dispatch(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs one command (main, and the fuzz tests that drive every command in-process).
+fn dispatch(command: cli::Command) -> anyhow::Result<()> {
+    match command {
         cli::Command::Vsg(cli::VsgCommand::Run(args)) => vsg_cmd::run(&args),
         cli::Command::Corners(args) => corners_cmd::run(&args),
         cli::Command::CornersEval(args) => corners_cmd::eval(&args),
@@ -34,12 +48,5 @@ fn main() -> ExitCode {
         cli::Command::Reconstruct(args) => reconstruct_cmd::run(&args),
         cli::Command::Demo(args) => demo_cmd::run(&args),
         cli::Command::Serve(args) => serve::run(&args),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
     }
 }

@@ -23,6 +23,32 @@ use anyhow::{Context, Result, anyhow};
 /// The prefix of every temporary name castellan leaves while writing.
 const PREFIX: &str = ".castellan-";
 
+/// Temporary files and staging folders of this process, removed if it is interrupted.
+static IN_PROGRESS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn in_progress() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    IN_PROGRESS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// On Ctrl-C or SIGTERM, removes this process's temporaries before it exits (status 130), so
+/// an interrupted run leaves nothing behind; `kill -9` cannot be caught, and what it leaves is
+/// swept by the next run.
+pub fn clean_up_on_interrupt() {
+    let _ = ctrlc::set_handler(|| {
+        for path in in_progress().drain(..) {
+            if path.is_dir() {
+                let _ = std::fs::remove_dir_all(&path);
+            } else {
+                let _ = std::fs::remove_file(&path);
+            }
+        }
+        eprintln!("interrupted: outputs left as they were");
+        std::process::exit(130);
+    });
+}
+
 /// Files to write, committed together only after every one was produced in memory.
 #[derive(Default)]
 pub struct Outputs {
@@ -146,6 +172,7 @@ impl StagedFolder {
         }
         std::fs::create_dir(&staging)
             .with_context(|| format!("cannot write in {}", parent.display()))?;
+        in_progress().push(staging.clone());
         Ok(StagedFolder {
             dest: dest.to_path_buf(),
             staging,
@@ -194,6 +221,7 @@ impl Drop for StagedFolder {
         if !self.finished {
             let _ = std::fs::remove_dir_all(&self.staging);
         }
+        in_progress().retain(|p| *p != self.staging);
     }
 }
 
@@ -271,6 +299,7 @@ fn commit_files(files: &[(PathBuf, Vec<u8>)]) -> Result<()> {
             .suffix(".tmp")
             .tempfile_in(&dir)
             .with_context(|| format!("cannot write in {}", dir.display()))?;
+        in_progress().push(tmp.path().to_path_buf());
         tmp.write_all(bytes)
             .with_context(|| format!("cannot write {}", path.display()))?;
         // Temporary files are private (0600); outputs are ordinary files others may read.
@@ -297,14 +326,18 @@ fn commit_files(files: &[(PathBuf, Vec<u8>)]) -> Result<()> {
         }
         _ => None,
     };
-    for (tmp, path) in staged {
+    let temporaries: Vec<PathBuf> = staged.iter().map(|(t, _)| t.path().to_path_buf()).collect();
+    // Past this point an interrupt must not remove the temporaries: the journal finishes them.
+    in_progress().retain(|p| !temporaries.contains(p));
+    let result = staged.into_iter().try_for_each(|(tmp, path)| {
         tmp.persist(path)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
+            .map(|_| ())
+            .with_context(|| format!("cannot write {}", path.display()))
+    });
     if let Some(j) = journal {
         let _ = std::fs::remove_file(j);
     }
-    Ok(())
+    result
 }
 
 /// Cleans up what dead castellan processes left in `dir`: journals are rolled forward, half-done

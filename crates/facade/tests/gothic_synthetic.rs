@@ -150,3 +150,40 @@ fn masonry_around_elements_and_the_vsg_model() {
     assert_eq!(stats.by_symbol.get("glass"), Some(&10));
     assert_eq!(stats.by_symbol.get("tympanum"), Some(&4));
 }
+
+/// Issue 19: a long photo once ran for minutes with nothing shown. The pipeline reports each
+/// fitted start and each group, ending with every start fitted, and the estimate is the same
+/// as without a listener.
+#[test]
+fn progress_is_reported_for_every_start_and_group_and_changes_nothing() {
+    use facade::gothic::{Progress, estimate_with_progress};
+    use std::sync::Mutex;
+    let s = synthetic_facade(&SynthSpec::small(), 3);
+    let params = GothicParams::default();
+    let seen = Mutex::new(Vec::new());
+    let est = estimate_with_progress(&s.image, &params, &|p| seen.lock().unwrap().push(p)).unwrap();
+    let seen = seen.into_inner().unwrap();
+    assert_eq!(seen[0], Progress::Edges);
+    let detecting: Vec<(usize, usize)> = seen
+        .iter()
+        .filter_map(|p| match p {
+            Progress::Detecting { done, total } => Some((*done, *total)),
+            _ => None,
+        })
+        .collect();
+    let total = detecting[0].1;
+    assert!(total > 0);
+    // 0 announced first, then one report per start (threads may report out of order).
+    assert_eq!(detecting.len(), total + 1);
+    assert!(detecting.iter().any(|&(d, _)| d == total));
+    assert!(
+        seen.iter()
+            .any(|p| matches!(p, Progress::Organising { level: 1, .. })),
+        "the small façade has groups: {seen:?}"
+    );
+    let plain = estimate(&s.image, &params).unwrap();
+    assert_eq!(
+        serde_json::to_string(&est).unwrap(),
+        serde_json::to_string(&plain).unwrap()
+    );
+}

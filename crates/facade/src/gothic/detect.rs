@@ -156,11 +156,26 @@ pub fn detect_from_starts(
     starts: &[Theta],
     params: &GothicParams,
 ) -> Vec<Candidate> {
+    detect_from_starts_with(dt, starts, params, &|_| {})
+}
+
+/// [`detect_from_starts`], telling `progress` after each start.
+pub fn detect_from_starts_with(
+    dt: &DistanceMap,
+    starts: &[Theta],
+    params: &GothicParams,
+    progress: &(dyn Fn(super::Progress) + Sync),
+) -> Vec<Candidate> {
     let bounds = params.bounds();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let total = starts.len();
+    progress(super::Progress::Detecting { done: 0, total });
     let mut out: Vec<Candidate> = rayon_map(starts, |start| {
         let theta = maximise(dt, *start, params.step, bounds, params.max_iters);
         let f = fit(dt, &theta, params.step);
         let ok = plausible(&theta, bounds, dt.width, dt.height) && significant(&f, params);
+        let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress(super::Progress::Detecting { done, total });
         ok.then_some(Candidate { theta, fit: f })
     });
     out.sort_by(|a, b| a.fit.mean_distance.total_cmp(&b.fit.mean_distance));

@@ -209,22 +209,60 @@ pub(crate) fn check_size(img: &RgbImage) -> Result<()> {
     Ok(())
 }
 
+/// How far the element pipeline has got, for a progress bar (a long photo can take minutes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// Edges and their distance transform.
+    Edges,
+    /// `done` of `total` starting shapes maximised.
+    Detecting { done: usize, total: usize },
+    /// Grouping round `level` (from 1) of at most `of`: `done` of `total` clusters of similar
+    /// elements re-estimated jointly, with their enclosing arches.
+    Organising {
+        level: usize,
+        of: usize,
+        done: usize,
+        total: usize,
+    },
+}
+
 /// The whole element pipeline of §4.2: detection, grouping, nesting.
 pub fn estimate(img: &RgbImage, params: &GothicParams) -> Result<GothicEstimate> {
+    estimate_with_progress(img, params, &|_| {})
+}
+
+/// [`estimate`], telling `progress` how far it has got (called from several threads).
+pub fn estimate_with_progress(
+    img: &RgbImage,
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<GothicEstimate> {
     check_size(img)?;
+    progress(Progress::Edges);
     let dt = distance_map(img, params);
-    let found = detect::detect(&dt, params);
-    Ok(organise(&dt, found, params))
+    let seeds = detect::seeds(&dt, params.min_seed_radius, params.max_seeds);
+    let found =
+        detect::detect_from_starts_with(&dt, &detect::starts(&dt, &seeds), params, progress);
+    Ok(organise_with_progress(&dt, found, params, progress))
 }
 
 /// Grouping, joint re-estimation and enclosing arches over detected elements, up to
 /// `max_levels` rounds; then parents, depths and groups as GOTHIC.json has them.
 pub fn organise(dt: &DistanceMap, found: Vec<Candidate>, params: &GothicParams) -> GothicEstimate {
+    organise_with_progress(dt, found, params, &|_| {})
+}
+
+fn organise_with_progress(
+    dt: &DistanceMap,
+    found: Vec<Candidate>,
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> GothicEstimate {
     let mut items: Vec<Candidate> = found;
     let mut group_of: Vec<Option<usize>> = vec![None; items.len()];
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
-    for _level in 0..params.max_levels {
+    for level in 0..params.max_levels {
         let free: Vec<usize> = (0..items.len())
             .filter(|&i| group_of[i].is_none())
             .collect();
@@ -238,7 +276,14 @@ pub fn organise(dt: &DistanceMap, found: Vec<Candidate>, params: &GothicParams) 
         if clusters.is_empty() {
             break;
         }
-        for members in clusters {
+        let total = clusters.len();
+        for (done, members) in clusters.into_iter().enumerate() {
+            progress(Progress::Organising {
+                level: level + 1,
+                of: params.max_levels,
+                done,
+                total,
+            });
             let thetas: Vec<Theta> = members.iter().map(|&i| items[i].theta).collect();
             let joint = maximise_group(dt, &thetas, params.step, params.bounds(), params.max_iters);
             let fits: Vec<_> = joint.iter().map(|t| fit(dt, t, params.step)).collect();
