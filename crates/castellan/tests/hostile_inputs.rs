@@ -46,7 +46,7 @@ fn every_image_command_refuses_an_image_over_the_pixel_budget_naming_it() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success(), "{args:?}");
         assert!(
-            err.contains("huge.pgm: 20000 × 20000 pixels (400.0 Mpx) is over castellan's pixel budget of 50 Mpx"),
+            err.contains("huge.pgm: 20000 × 20000 pixels (400.0 Mpx) is over castellan's pixel budget of 40 Mpx"),
             "{args:?}: {err}"
         );
         nothing_but(d, &["huge.pgm", "t.json"]);

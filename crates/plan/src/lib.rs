@@ -144,7 +144,7 @@ impl Default for Options {
         Options {
             min_region: 0.0005,
             face_tolerance: 0.06,
-            max_pixels: 50_000_000,
+            max_pixels: 40_000_000,
             upsample_below: 1000,
             close_gaps: true,
             inner_ward_towers: true,
