@@ -10,7 +10,9 @@ import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import path from 'node:path';
 
+// The URL castellan serve printed, with its token (`http://127.0.0.1:PORT/?token=…`).
 const url = process.env.CASTELLAN_URL;
+const origin = new URL(url).origin;
 const shots = process.env.SCREENSHOTS;
 const expectStructures = Number(process.env.EXPECT_STRUCTURES);
 fs.mkdirSync(shots, { recursive: true });
@@ -33,7 +35,7 @@ try {
   const page = browser.pages()[0] || await browser.newPage();
   const external = [];
   // Textures decoded from the glb come as blob: and data: URLs of the page itself.
-  page.on('request', (r) => { if (!/^(blob:|data:)/.test(r.url()) && !r.url().startsWith(url)) external.push(r.url()); });
+  page.on('request', (r) => { if (!/^(blob:|data:)/.test(r.url()) && !r.url().startsWith(`${origin}/`)) external.push(r.url()); });
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
   page.setDefaultTimeout(60_000);
@@ -41,11 +43,12 @@ try {
   await page.goto(url);
   await page.waitForSelector('body[data-ready=true]');
   // Every text the status line shows, to check that long steps report progress while they run.
-  await page.evaluate(() => {
+  const watchStatus = () => page.evaluate(() => {
     window.statusLog = [];
     new MutationObserver(() => window.statusLog.push(document.getElementById('status').textContent))
       .observe(document.getElementById('status'), { childList: true, characterData: true, subtree: true });
   });
+  await watchStatus();
   const statusLog = () => page.evaluate(() => window.statusLog.splice(0));
   // A canvas or image position in image pixels → page coordinates.
   const at = async (selector, [x, y]) => {
@@ -208,6 +211,27 @@ try {
   await page.click('#corr-save');
   await page.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
   await page.locator('#correspondences').screenshot({ path: path.join(shots, 'correspondences.png') });
+  // Two tabs: the other saves a correspondence first, so this tab's save is refused (412) with
+  // a message asking to reload, rather than silently dropping the other's.
+  const other = await browser.newPage();
+  await other.goto(url);
+  await other.waitForSelector('body[data-ready=true]');
+  await other.locator('#corr-photo').click({ position: { x: 40, y: 40 } });
+  await other.locator('#corr-plan').click({ position: { x: 60, y: 60 } });
+  await other.click('#corr-add');
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('3 saved'));
+  await page.click('#corr-save');
+  await page.waitForFunction(() => /reload the page/.test(document.getElementById('status').textContent));
+  figures.stale_save_status = await page.textContent('#status');
+  await other.locator('#corr-list li').nth(2).locator('button').click();
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
+  await other.close();
+  await page.reload();
+  await page.waitForSelector('body[data-ready=true]');
+  await watchStatus();
+  check(await page.locator('#corr-list li').count() === 2, 'the reloaded page shows the saved correspondences');
 
   // 4 reconstruct and view
   await statusLog();
