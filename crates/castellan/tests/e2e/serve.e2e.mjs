@@ -43,12 +43,11 @@ try {
   await page.goto(url);
   await page.waitForSelector('body[data-ready=true]');
   // Every text the status line shows, to check that long steps report progress while they run.
-  const watchStatus = () => page.evaluate(() => {
+  await page.evaluate(() => {
     window.statusLog = [];
     new MutationObserver(() => window.statusLog.push(document.getElementById('status').textContent))
       .observe(document.getElementById('status'), { childList: true, characterData: true, subtree: true });
   });
-  await watchStatus();
   const statusLog = () => page.evaluate(() => window.statusLog.splice(0));
   // A canvas or image position in image pixels → page coordinates.
   const at = async (selector, [x, y]) => {
@@ -211,27 +210,6 @@ try {
   await page.click('#corr-save');
   await page.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
   await page.locator('#correspondences').screenshot({ path: path.join(shots, 'correspondences.png') });
-  // Two tabs: the other saves a correspondence first, so this tab's save is refused (412) with
-  // a message asking to reload, rather than silently dropping the other's.
-  const other = await browser.newPage();
-  await other.goto(url);
-  await other.waitForSelector('body[data-ready=true]');
-  await other.locator('#corr-photo').click({ position: { x: 40, y: 40 } });
-  await other.locator('#corr-plan').click({ position: { x: 60, y: 60 } });
-  await other.click('#corr-add');
-  await other.click('#corr-save');
-  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('3 saved'));
-  await page.click('#corr-save');
-  await page.waitForFunction(() => /reload the page/.test(document.getElementById('status').textContent));
-  figures.stale_save_status = await page.textContent('#status');
-  await other.locator('#corr-list li').nth(2).locator('button').click();
-  await other.click('#corr-save');
-  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
-  await other.close();
-  await page.reload();
-  await page.waitForSelector('body[data-ready=true]');
-  await watchStatus();
-  check(await page.locator('#corr-list li').count() === 2, 'the reloaded page shows the saved correspondences');
 
   // 4 reconstruct and view
   await statusLog();
@@ -333,6 +311,26 @@ try {
   figures.uncut_changed_fraction = await changed();
   check(figures.uncut_changed_fraction < 0.001, `without the cut the picture is back (${figures.uncut_changed_fraction})`);
   figures.viewer_fps = await page.evaluate(() => window.castellanFps(120));
+  // Two tabs: the other saves a correspondence first, so this tab's save is refused (412) with
+  // a message asking to reload, rather than silently dropping the other's.
+  const other = await browser.newPage();
+  await other.goto(url);
+  await other.waitForSelector('body[data-ready=true]');
+  await other.locator('#corr-photo').click({ position: { x: 40, y: 40 } });
+  await other.locator('#corr-plan').click({ position: { x: 60, y: 60 } });
+  await other.click('#corr-add');
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('3 saved'));
+  await page.click('#corr-save');
+  await page.waitForFunction(() => /reload the page/.test(document.getElementById('status').textContent));
+  figures.stale_save_status = await page.textContent('#status');
+  await other.locator('#corr-list li').nth(2).locator('button').click();
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
+  await other.close();
+  await page.reload();
+  await page.waitForSelector('body[data-ready=true]');
+  check(await page.locator('#corr-list li').count() === 2, 'the reloaded page shows the saved correspondences');
   check(external.length === 0, `requests outside the server: ${external.join(', ')}`);
   check(errors.length === 0, `page errors: ${errors.join('; ')}`);
 } finally {
