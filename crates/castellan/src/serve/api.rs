@@ -179,8 +179,11 @@ pub(super) fn facade_for_edit(
     let p = store.require().map_err(err(StatusCode::CONFLICT))?;
     let f = find_facade(&p, name)?.clone();
     let path = store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
+    // The header only; a photo over the pixel budget could not be worked on anyway.
     let size = image::image_dimensions(&path)
         .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+    crate::images::check_budget(size.0, size.1, name)
+        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{e:#}")))?;
     Ok((p, f, size))
 }
 
