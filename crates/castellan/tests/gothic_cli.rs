@@ -109,7 +109,7 @@ fn unreadable_and_tiny_images_are_clear_errors_without_output() {
     let dir = tempfile::tempdir().unwrap();
     let junk = dir.path().join("junk.png");
     std::fs::write(&junk, b"not a picture").unwrap();
-    fails_naming(&junk, "not a readable image");
+    fails_naming(&junk, "not an image castellan reads");
     fails_naming(&dir.path().join("missing.png"), "cannot read");
     let tiny = dir.path().join("tiny.png");
     RgbImage::from_pixel(1, 1, Rgb([0, 0, 0]))
