@@ -146,7 +146,7 @@ fn batch_parses_the_good_drawing_and_reports_the_two_bad_files() {
     assert_eq!(towers, 6, "{csv}");
     assert!(rows[2][5].parse::<usize>().unwrap() >= 5, "{csv}");
     assert_eq!(&rows[3][..2], &["notes.txt", "false"]);
-    assert!(rows[3][7].contains("not a readable image"), "{csv}");
+    assert!(rows[3][7].contains("not an image castellan reads"), "{csv}");
 
     for suffix in ["plan.json", "labels.png", "overlay.png", "svg"] {
         assert!(out.join(format!("castle.{suffix}")).exists(), "{suffix}");
