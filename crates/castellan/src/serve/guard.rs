@@ -74,7 +74,7 @@ impl Access {
 
     fn host_ok(&self, host: &str) -> bool {
         let host = host.to_ascii_lowercase();
-        self.hosts.iter().any(|h| *h == host)
+        self.hosts.contains(&host)
     }
 
     fn origin_ok(&self, origin: &str) -> bool {
