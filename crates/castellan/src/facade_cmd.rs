@@ -186,7 +186,7 @@ mod bad_input_tests {
             r#"{"classes": {"window": [[40, 10, 40, 30]], "wall": [[2, 2, 20, 20]]}}"#,
         );
         assert!(
-            err.contains("t.json") && err.contains("no pixels inside"),
+            err.contains("t.json") && err.contains("window box 0") && err.contains("zero area"),
             "{err}"
         );
         assert!(!wrote);

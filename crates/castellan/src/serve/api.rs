@@ -1,6 +1,7 @@
 //! The HTTP API of `castellan serve` (docs/serve.md has the table), part 1: the server's state,
-//! errors as JSON, the blocking runner holding the project's lock, the project, progress,
-//! uploads (checked by decoding) and files confined to the project. The stages are in stages.rs.
+//! errors as JSON, the blocking runner holding the project's lock, the project's version (ETag,
+//! If-Match), progress, uploads (decoded within the pixel budget, never overwriting a file) and
+//! files confined to the project. The stages are in stages.rs.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -8,19 +9,21 @@ use std::time::Instant;
 
 use axum::Json;
 use axum::extract::{Multipart, Path, State};
-use axum::http::{StatusCode, header};
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use integrate::project::{FacadeEntry, Project, TrainingSource};
 use serde_json::{Value, json};
 
+use super::guard::Access;
 use super::store::{Store, upload_name};
-use crate::images::{MAX_ALLOC, MAX_SIDE};
 use crate::reconstruct_cmd::stem;
 
 /// The server's state: one project and what it is doing.
 pub struct App {
     pub store: Store,
     pub max_upload: usize,
+    /// The token and the addresses the server answers to (guard.rs).
+    pub access: Access,
     progress: Mutex<Progress>,
     /// How long each step took last time, so the page can show how far along a step is.
     durations: Mutex<HashMap<String, u128>>,
@@ -41,10 +44,11 @@ struct Progress {
 }
 
 impl App {
-    pub fn new(store: Store, max_upload: usize) -> Arc<App> {
+    pub fn new(store: Store, max_upload: usize, access: Access) -> Arc<App> {
         Arc::new(App {
             store,
             max_upload,
+            access,
             progress: Mutex::new(Progress::default()),
             durations: Mutex::new(HashMap::new()),
         })
@@ -65,6 +69,55 @@ pub(super) fn err(status: StatusCode) -> impl Fn(anyhow::Error) -> ApiError {
 }
 
 pub(super) type Reply = Result<Json<Value>, ApiError>;
+
+/// An answer carrying the project's version after the request (its `ETag`), so the page can
+/// send it back as `If-Match` with its next change.
+pub struct Versioned(pub Value, pub String);
+
+impl IntoResponse for Versioned {
+    fn into_response(self) -> Response {
+        ([(header::ETAG, self.1)], Json(self.0)).into_response()
+    }
+}
+
+/// The answer of a request that reads or changes the project's saved state.
+pub(super) type Saved = Result<Versioned, ApiError>;
+
+/// The If-Match header of a request, if any.
+pub(super) fn if_match(headers: &HeaderMap) -> Option<String> {
+    headers
+        .get(header::IF_MATCH)
+        .map(|v| String::from_utf8_lossy(v.as_bytes()).into_owned())
+}
+
+/// Refuses (412) a change made against another version of the project than the saved one: two
+/// tabs, or a tab and an editor, would otherwise each overwrite the other's work unseen. Call
+/// it holding the lock, before changing anything; no If-Match means no check (scripts, curl).
+pub(super) fn check_version(store: &Store, if_match: Option<&str>) -> Result<(), ApiError> {
+    let Some(wanted) = if_match else {
+        return Ok(());
+    };
+    let current = store.version();
+    let matches = wanted
+        .split(',')
+        .map(str::trim)
+        .any(|t| t == "*" || t.strip_prefix("W/").unwrap_or(t) == current);
+    if matches {
+        Ok(())
+    } else {
+        Err(ApiError(
+            StatusCode::PRECONDITION_FAILED,
+            "the project was changed since this page loaded it (in another tab or an editor); \
+             reload the page to see the changes, then make yours again"
+                .into(),
+        ))
+    }
+}
+
+/// `body` with the project's version, read under the lock the caller holds.
+pub(super) fn versioned(store: &Store, body: Value) -> Saved {
+    Ok(Versioned(body, store.version()))
+}
 
 /// Runs `work` on a blocking thread under the project lock, reporting it as step `step`.
 pub(super) async fn blocking<T, F>(app: Arc<App>, step: &str, work: F) -> Result<T, ApiError>
@@ -126,13 +179,16 @@ pub(super) fn facade_for_edit(
     let p = store.require().map_err(err(StatusCode::CONFLICT))?;
     let f = find_facade(&p, name)?.clone();
     let path = store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
+    // The header only; a photo over the pixel budget could not be worked on anyway.
     let size = image::image_dimensions(&path)
         .map_err(|e| ApiError(StatusCode::CONFLICT, format!("{name}: {e}")))?;
+    crate::images::check_budget(size.0, size.1, name)
+        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{e:#}")))?;
     Ok((p, f, size))
 }
 
 /// GET /api/project
-pub async fn project(State(app): State<Arc<App>>) -> Reply {
+pub async fn project(State(app): State<Arc<App>>) -> Saved {
     blocking(app, "project", |app| {
         let p = app.store.load().map_err(err(StatusCode::CONFLICT))?;
         let cleaning = match &p {
@@ -150,13 +206,16 @@ pub async fn project(State(app): State<Arc<App>>) -> Reply {
             .ok()
             .flatten()
             .map(|_| super::stages::outputs());
-        Ok(Json(json!({
-            "dir": app.store.dir.display().to_string(),
-            "project": p,
-            "training": training,
-            "cleaning": cleaning,
-            "outputs": model,
-        })))
+        versioned(
+            &app.store,
+            json!({
+                "dir": app.store.dir.display().to_string(),
+                "project": p,
+                "training": training,
+                "cleaning": cleaning,
+                "outputs": model,
+            }),
+        )
     })
     .await
 }
@@ -173,7 +232,8 @@ pub async fn progress(State(app): State<Arc<App>>) -> Json<Value> {
 }
 
 /// POST /api/upload: multipart fields `kind` (`plan` or `facade`) and `file`.
-pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
+pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: Multipart) -> Saved {
+    let if_match = if_match(&headers);
     let mut kind = None;
     let mut file = None;
     loop {
@@ -199,8 +259,14 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
     }
     let (client_name, bytes) = file.ok_or_else(|| bad("the upload has no `file` field"))?;
     blocking(app, "upload", move |app| {
+        check_version(&app.store, if_match.as_deref())?;
         let (format, width, height) = check_image(&client_name, &bytes)?;
-        let name = upload_name(&client_name, format);
+        // Never over an existing file: a photo's boxes describe that photo, and a façade
+        // called like the plan must not replace the drawing.
+        let name = app
+            .store
+            .fresh_name(&upload_name(&client_name, format), kind == "facade")
+            .map_err(err(StatusCode::CONFLICT))?;
         let mut project = app.store.load().map_err(err(StatusCode::CONFLICT))?;
         let mut files = vec![(name.clone(), bytes.to_vec())];
         if kind == "plan" {
@@ -249,9 +315,13 @@ pub async fn upload(State(app): State<Arc<App>>, mut form: Multipart) -> Reply {
         app.store
             .commit(project.as_ref(), files)
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        Ok(Json(json!({
-            "name": name, "kind": kind, "width": width, "height": height, "url": file_url(&name),
-        })))
+        versioned(
+            &app.store,
+            json!({
+                "name": name, "kind": kind, "width": width, "height": height,
+                "url": file_url(&name),
+            }),
+        )
     })
     .await
 }
@@ -271,25 +341,21 @@ fn multipart_error(app: &App, e: axum::extract::multipart::MultipartError) -> Ap
     }
 }
 
-/// Decodes the upload (bounded like every image castellan reads) to prove it is an image.
+/// Decodes the upload with every image read's bounds (`images::decode`: the pixel budget
+/// checked from the header before any pixel is decoded) to prove it is an image. An image over
+/// the budget is 413, anything that does not decode 415.
 fn check_image(name: &str, bytes: &[u8]) -> Result<(image::ImageFormat, u32, u32), ApiError> {
-    let unsupported = |m: String| ApiError(StatusCode::UNSUPPORTED_MEDIA_TYPE, m);
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+    let header = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
-        .map_err(|e| unsupported(format!("{name}: {e}")))?;
-    let format = reader.format().ok_or_else(|| {
-        unsupported(format!(
-            "{name}: not an image castellan reads (PNG, JPEG or PNM)"
-        ))
-    })?;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_SIDE);
-    limits.max_image_height = Some(MAX_SIDE);
-    limits.max_alloc = Some(MAX_ALLOC);
-    reader.limits(limits);
-    let img = reader
-        .decode()
-        .map_err(|e| unsupported(format!("{name}: not a readable image ({e})")))?;
+        .ok()
+        .and_then(|r| r.into_dimensions().ok());
+    if let Some((w, h)) = header
+        && let Err(e) = crate::images::check_budget(w, h, name)
+    {
+        return Err(ApiError(StatusCode::PAYLOAD_TOO_LARGE, format!("{e:#}")));
+    }
+    let (img, format) = crate::images::decode(bytes, name)
+        .map_err(|e| ApiError(StatusCode::UNSUPPORTED_MEDIA_TYPE, format!("{e:#}")))?;
     Ok((format, img.width(), img.height()))
 }
 

@@ -6,14 +6,16 @@ use std::sync::Arc;
 
 use axum::Json;
 use axum::extract::State;
-use axum::http::{StatusCode, header};
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use image::{GrayImage, Luma};
 use integrate::project::Project;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use super::api::{ApiError, App, Reply, blocking, err, file_url};
+use super::api::{
+    ApiError, App, Saved, blocking, check_version, err, file_url, if_match, versioned,
+};
 use crate::images::{png, read_image};
 use crate::reconstruct_cmd::stem;
 
@@ -158,7 +160,6 @@ fn distance_to_segment(p: [f64; 2], [a, b]: [[f64; 2]; 2]) -> f64 {
 
 /// The saved cleaning, or none yet: the project's plan is then the original.
 pub fn load(app: &App, p: &Project) -> Result<Cleaning, ApiError> {
-    let conflict = |m: String| ApiError(StatusCode::CONFLICT, format!("{CLEANING_FILE}: {m}"));
     match app
         .store
         .existing(CLEANING_FILE)
@@ -169,8 +170,7 @@ pub fn load(app: &App, p: &Project) -> Result<Cleaning, ApiError> {
             strokes: vec![],
         }),
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| conflict(e.to_string()))?;
-            serde_json::from_str(&text).map_err(|e| conflict(e.to_string()))
+            crate::text::read_json(&path, "a plan_cleaning.json").map_err(err(StatusCode::CONFLICT))
         }
     }
 }
@@ -211,9 +211,15 @@ pub async fn binary(State(app): State<Arc<App>>) -> Result<Response, ApiError> {
 
 /// PUT /api/plan/cleaning: paints every stroke on the original's binary image and makes the
 /// result the project's plan (`STEM.cleaned.png`); no strokes restores the original.
-pub async fn save(State(app): State<Arc<App>>, Json(body): Json<Strokes>) -> Reply {
+pub async fn save(
+    State(app): State<Arc<App>>,
+    headers: HeaderMap,
+    Json(body): Json<Strokes>,
+) -> Saved {
+    let if_match = if_match(&headers);
     blocking(app, "plan cleaning", move |app| {
         let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        check_version(&app.store, if_match.as_deref())?;
         let mut cleaning = load(app, &p)?;
         let mut img = original_binary(app, &cleaning)?;
         check(&body.strokes, img.width(), img.height())
@@ -236,10 +242,13 @@ pub async fn save(State(app): State<Arc<App>>, Json(body): Json<Strokes>) -> Rep
         app.store
             .commit(Some(&p), files)
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        Ok(Json(json!({
-            "plan": p.plan, "url": file_url(&p.plan), "original": cleaning.original,
-            "strokes": cleaning.strokes.len(), "changed_pixels": changed,
-        })))
+        versioned(
+            &app.store,
+            json!({
+                "plan": p.plan, "url": file_url(&p.plan), "original": cleaning.original,
+                "strokes": cleaning.strokes.len(), "changed_pixels": changed,
+            }),
+        )
     })
     .await
 }

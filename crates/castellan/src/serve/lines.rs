@@ -6,11 +6,14 @@ use std::sync::Arc;
 
 use axum::Json;
 use axum::extract::{Path, State};
-use axum::http::StatusCode;
+use axum::http::{HeaderMap, StatusCode};
 use facade::rectify::{ManualLines, RectifyParams, Segment, rectify_with_lines};
 use serde_json::{Value, json};
 
-use super::api::{ApiError, App, Reply, blocking, err, facade_for_edit, file_url, find_facade};
+use super::api::{
+    ApiError, App, Saved, blocking, check_version, err, facade_for_edit, file_url, find_facade,
+    if_match, versioned,
+};
 use crate::reconstruct_cmd::stem;
 
 /// Most segments per family one LINES.json may hold.
@@ -47,10 +50,13 @@ pub fn check(lines: &ManualLines, width: u32, height: u32) -> Result<(), String>
 pub async fn save(
     State(app): State<Arc<App>>,
     Path(name): Path<String>,
+    headers: HeaderMap,
     Json(lines): Json<ManualLines>,
-) -> Reply {
+) -> Saved {
+    let if_match = if_match(&headers);
     blocking(app, "lines", move |app| {
         let (mut p, f, (w, h)) = facade_for_edit(&app.store, &name)?;
+        check_version(&app.store, if_match.as_deref())?;
         check(&lines, w, h)
             .map_err(|m| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {m}")))?;
         let file = f
@@ -64,26 +70,35 @@ pub async fn save(
         app.store
             .commit(Some(&p), vec![(file.clone(), bytes)])
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        Ok(Json(json!({
-            "saved": file, "url": file_url(&file),
-            "horizontal": lines.horizontal.len(), "vertical": lines.vertical.len(),
-        })))
+        versioned(
+            &app.store,
+            json!({
+                "saved": file, "url": file_url(&file),
+                "horizontal": lines.horizontal.len(), "vertical": lines.vertical.len(),
+            }),
+        )
     })
     .await
 }
 
 /// DELETE /api/facades/{name}/lines: back to the automatic segments (the file is kept).
-pub async fn remove(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
+pub async fn remove(
+    State(app): State<Arc<App>>,
+    Path(name): Path<String>,
+    headers: HeaderMap,
+) -> Saved {
+    let if_match = if_match(&headers);
     blocking(app, "lines", move |app| {
         let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         find_facade(&p, &name)?;
+        check_version(&app.store, if_match.as_deref())?;
         for g in p.facades.iter_mut().filter(|g| g.image == name) {
             g.lines = None;
         }
         app.store
             .commit(Some(&p), vec![])
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        Ok(Json(json!({ "saved": Value::Null })))
+        versioned(&app.store, json!({ "saved": Value::Null }))
     })
     .await
 }

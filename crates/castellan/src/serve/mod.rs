@@ -5,8 +5,14 @@
 
 mod api;
 mod clean;
+mod conn;
 #[cfg(test)]
 mod edit_tests;
+#[cfg(test)]
+mod fuzz_tests;
+mod guard;
+#[cfg(test)]
+mod guard_tests;
 mod lines;
 mod stages;
 mod store;
@@ -16,6 +22,7 @@ mod tests;
 use std::net::{IpAddr, Ipv4Addr};
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::time::Duration;
 
 use anyhow::{Context, Result};
 use axum::Router;
@@ -24,6 +31,8 @@ use axum::http::header;
 use axum::response::IntoResponse;
 use axum::routing::{get, post, put};
 use clap::Args;
+
+pub use guard::Access;
 
 /// `castellan serve` flags.
 #[derive(Debug, Args)]
@@ -35,12 +44,26 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
     /// Address to listen on. The default is loopback only: the API writes to the project folder
-    /// and has no authentication, so expose it to a network only if you trust everyone on it.
+    /// and its only protection is the token in the printed URL, which travels unencrypted, so
+    /// expose it to a network only if you trust everyone on it.
     #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
     pub host: IpAddr,
-    /// Largest upload accepted, in MiB.
-    #[arg(long, default_value_t = 64)]
-    pub max_upload_mb: usize,
+    /// Largest upload (and request body) accepted, in MiB, 1 to 4096.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    pub max_upload_mb: u64,
+    /// Seconds a client may take to send a request's headers (and to start its next request
+    /// on a kept-alive connection).
+    #[arg(long, default_value_t = 30, hide = true, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub header_timeout_secs: u64,
+    /// Seconds a client may take to send a request's body.
+    #[arg(long, default_value_t = 120, hide = true, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub body_timeout_secs: u64,
+    /// Seconds a client may leave an answer unread before the connection is closed.
+    #[arg(long, default_value_t = 60, hide = true, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub write_timeout_secs: u64,
+    /// Most connections served at once.
+    #[arg(long, default_value_t = 64, hide = true, value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    pub max_connections: u64,
 }
 
 const INDEX_HTML: &str = include_str!("../../web/index.html");
@@ -51,7 +74,7 @@ const APP_JS: &str = include_str!(concat!(env!("OUT_DIR"), "/app.js"));
 pub fn run(args: &ServeArgs) -> Result<()> {
     let store = store::Store::open(&args.project_dir)?;
     let dir = store.dir.clone();
-    let app = router(api::App::new(store, args.max_upload_mb << 20));
+    let token = Access::random_token()?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
@@ -61,18 +84,29 @@ pub fn run(args: &ServeArgs) -> Result<()> {
             .await
             .with_context(|| format!("cannot listen on {}:{}", args.host, args.port))?;
         let addr = listener.local_addr()?;
+        let access = Access::new(token, addr, Duration::from_secs(args.body_timeout_secs));
+        let url = format!("http://{addr}/?token={}", access.token);
+        // The flag's range keeps the shift in bounds (4096 MiB = 2^32 bytes).
+        let app = router(api::App::new(
+            store,
+            (args.max_upload_mb as usize) << 20,
+            access,
+        ));
         if !args.host.is_loopback() {
             eprintln!(
-                "warning: listening on {addr}: anyone who can reach it can read and change {}",
+                "warning: listening on {addr}: anyone who can reach it and learns the token \
+                 (it travels unencrypted) can read and change {}",
                 dir.display()
             );
         }
-        // Tests and scripts read this line for the port.
-        println!(
-            "castellan serve: http://{addr}/ (project {})",
-            dir.display()
-        );
-        axum::serve(listener, app)
+        // Tests and scripts read this line for the address and the token.
+        println!("castellan serve: {url} (project {})", dir.display());
+        let limits = conn::Limits {
+            header: Duration::from_secs(args.header_timeout_secs),
+            write: Duration::from_secs(args.write_timeout_secs),
+            connections: args.max_connections as usize,
+        };
+        conn::serve(listener, app, limits)
             .await
             .context("the server stopped")
     })
@@ -107,6 +141,10 @@ pub fn router(app: Arc<api::App>) -> Router {
         .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(api::file))
         .layer(DefaultBodyLimit::max(limit))
+        .layer(axum::middleware::from_fn_with_state(
+            app.clone(),
+            guard::check,
+        ))
         .with_state(app)
 }
 
@@ -137,5 +175,22 @@ mod flag_tests {
         assert_eq!((c.project_dir, c.port), (PathBuf::from("proj"), 0));
         assert!(!c.host.is_loopback());
         assert!(Cli::try_parse_from(["x", "--port", "70000"]).is_err());
+    }
+
+    #[test]
+    fn an_upload_limit_that_would_overflow_is_refused() {
+        let e = Cli::try_parse_from(["x", "--max-upload-mb", "17592186044416"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("--max-upload-mb") && e.contains("1..=4096"),
+            "{e}"
+        );
+        assert!(Cli::try_parse_from(["x", "--max-upload-mb", "0"]).is_err());
+        let c = Cli::try_parse_from(["x", "--max-upload-mb", "4096"])
+            .unwrap()
+            .args;
+        assert_eq!((c.max_upload_mb as usize) << 20, 1 << 32);
     }
 }

@@ -7,13 +7,16 @@ use std::time::Instant;
 
 use axum::Json;
 use axum::extract::{Path, State};
-use axum::http::StatusCode;
+use axum::http::{HeaderMap, StatusCode};
 use facade::classify::Training;
 use facade::rectify::ManualLines;
 use integrate::project::{Correspondence, FacadeEntry, TrainingSource};
 use serde_json::{Value, json};
 
-use super::api::{ApiError, App, Reply, blocking, err, facade_for_edit, file_url, find_facade};
+use super::api::{
+    ApiError, App, Reply, Saved, blocking, check_version, err, facade_for_edit, file_url,
+    find_facade, if_match, versioned,
+};
 use crate::images::{png, read_image};
 use crate::reconstruct_cmd::stem;
 
@@ -23,11 +26,9 @@ fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiErro
         return Ok(None);
     };
     let path = app.store.path(name).map_err(err(StatusCode::CONFLICT))?;
-    let conflict = |e: String| ApiError(StatusCode::CONFLICT, format!("{name}: {e}"));
-    let text = std::fs::read_to_string(&path).map_err(|e| conflict(e.to_string()))?;
-    serde_json::from_str(&text)
+    crate::text::read_json(&path, "a LINES.json")
         .map(Some)
-        .map_err(|e| conflict(e.to_string()))
+        .map_err(err(StatusCode::CONFLICT))
 }
 
 /// A façade photo of the project, decoded.
@@ -124,16 +125,19 @@ pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> R
 pub async fn training(
     State(app): State<Arc<App>>,
     Path(name): Path<String>,
+    headers: HeaderMap,
     Json(training): Json<Training>,
-) -> Reply {
+) -> Saved {
+    let if_match = if_match(&headers);
     blocking(app, "training", move |app| {
         let (mut p, f, (w, h)) = facade_for_edit(&app.store, &name)?;
-        // An empty set is a valid state to save (the user clears the boxes); otherwise check.
-        if training.classes.values().any(|b| !b.is_empty()) {
-            training
-                .boxes(w as usize, h as usize)
-                .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {e}")))?;
-        }
+        check_version(&app.store, if_match.as_deref())?;
+        // The library's checks (box count, inverted, empty, non-finite, outside the photo), as
+        // every command makes them; window and wall boxes may still be missing while the user
+        // draws (an empty set is saved when the user clears the boxes).
+        training
+            .validate(w as usize, h as usize)
+            .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {e}")))?;
         let file = match &f.training {
             TrainingSource::File(file) => file.clone(),
             TrainingSource::Inline(_) => format!("{}.training.json", stem(&f.image)),
@@ -146,7 +150,7 @@ pub async fn training(
             .commit(Some(&p), vec![(file.clone(), bytes)])
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
         let boxes: usize = training.classes.values().map(Vec::len).sum();
-        Ok(Json(json!({ "saved": file, "boxes": boxes })))
+        versioned(&app.store, json!({ "saved": file, "boxes": boxes }))
     })
     .await
 }
@@ -196,15 +200,18 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
 /// PUT /api/correspondences: the whole list (§6.1.1), replacing the project's.
 pub async fn correspondences(
     State(app): State<Arc<App>>,
+    headers: HeaderMap,
     Json(list): Json<Vec<Correspondence>>,
-) -> Reply {
+) -> Saved {
+    let if_match = if_match(&headers);
     blocking(app, "correspondences", move |app| {
         let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        check_version(&app.store, if_match.as_deref())?;
         p.correspondences = list;
         app.store
             .commit(Some(&p), vec![])
             .map_err(err(StatusCode::BAD_REQUEST))?;
-        Ok(Json(json!({ "saved": p.correspondences.len() })))
+        versioned(&app.store, json!({ "saved": p.correspondences.len() }))
     })
     .await
 }

@@ -1,6 +1,8 @@
 //! The project directory behind `castellan serve` (the PROJECT.toml contract, §6.1.1): reads and
 //! atomic writes of PROJECT.toml, TRAINING.json files and uploads, with every name confined to
-//! the directory, and one lock so concurrent requests change the project one at a time.
+//! the directory, one lock so concurrent requests change the project one at a time, and the
+//! project's version (the page's ETag). A hand-written PROJECT.toml keeps its comments and
+//! layout: each save patches the user's document with the new values (toml_edit).
 
 use std::path::{Component, Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
@@ -44,13 +46,14 @@ impl Store {
     /// The project, or None before a plan drawing was uploaded.
     pub fn load(&self) -> Result<Option<Project>> {
         let path = self.dir.join(PROJECT_FILE);
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(anyhow!("cannot read {}: {e}", path.display())),
-        };
-        let project: Project =
-            toml::from_str(&text).map_err(|e| anyhow!("{}: {}", path.display(), e.message()))?;
+        if !path.exists() {
+            return Ok(None);
+        }
+        let text = crate::text::read_text(&path)?;
+        let project: Project = toml::from_str(&text).map_err(|e| {
+            let (line, col) = line_col(&text, e.span().map_or(0, |s| s.start));
+            anyhow!("{}:{line}:{col}: {}", path.display(), e.message())
+        })?;
         check_in_progress(&project).map_err(|e| anyhow!("{}:{e}", path.display()))?;
         Ok(Some(project))
     }
@@ -69,9 +72,78 @@ impl Store {
         }
         if let Some(p) = project {
             check_in_progress(p).map_err(|e| anyhow!("{PROJECT_FILE}:{e}"))?;
-            out.add(&self.dir.join(PROJECT_FILE), p.to_toml().into_bytes());
+            let path = self.dir.join(PROJECT_FILE);
+            let old = path
+                .exists()
+                .then(|| crate::text::read_text(&path))
+                .transpose()?;
+            let text = match old {
+                Some(old) => patched(&old, p),
+                None => p.to_toml(),
+            };
+            out.add(&path, text.into_bytes());
         }
         out.commit()
+    }
+
+    /// The version of what the page edits: PROJECT.toml, plan_cleaning.json and every
+    /// façade's TRAINING.json and LINES.json, hashed. Any change to one, by the server or by
+    /// hand, gives another version; the page sends it back as If-Match.
+    pub fn version(&self) -> String {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::hash::DefaultHasher::new();
+        let mut add = |name: &str| {
+            name.hash(&mut h);
+            let bytes = self
+                .existing(name)
+                .ok()
+                .flatten()
+                .and_then(|p| std::fs::read(p).ok());
+            bytes.hash(&mut h);
+        };
+        add(PROJECT_FILE);
+        add(super::clean::CLEANING_FILE);
+        if let Ok(Some(p)) = self.load() {
+            for f in &p.facades {
+                if let TrainingSource::File(t) = &f.training {
+                    add(t);
+                }
+                if let Some(l) = &f.lines {
+                    add(l);
+                }
+            }
+        }
+        format!("\"{:016x}\"", h.finish())
+    }
+
+    /// `name`, or `STEM-2.EXT`, `STEM-3.EXT`… the first that names no file in the project (and,
+    /// for a façade renamed so, whose training and lines files do not exist either, so no old
+    /// boxes attach to the new photo).
+    pub fn fresh_name(&self, name: &str, facade: bool) -> Result<String> {
+        let taken =
+            |n: &str| -> Result<bool> { Ok(std::fs::symlink_metadata(self.path(n)?).is_ok()) };
+        if !taken(name)? {
+            return Ok(name.to_string());
+        }
+        let (stem, ext) = match name.rsplit_once('.') {
+            Some((s, e)) if !s.is_empty() => (s, format!(".{e}")),
+            _ => (name, String::new()),
+        };
+        for k in 2..10_000 {
+            let candidate = format!("{stem}-{k}{ext}");
+            let s = format!("{stem}-{k}");
+            if taken(&candidate)?
+                || (facade
+                    && (taken(&format!("{s}.training.json"))?
+                        || taken(&format!("{s}.lines.json"))?))
+            {
+                continue;
+            }
+            return Ok(candidate);
+        }
+        Err(anyhow!(
+            "no free file name like {name} in the project folder"
+        ))
     }
 
     /// A name inside the project as a path; anything that could leave the folder is refused.
@@ -101,11 +173,7 @@ impl Store {
                 None => Ok(Training {
                     classes: Default::default(),
                 }),
-                Some(path) => {
-                    let text = std::fs::read_to_string(&path)
-                        .with_context(|| format!("cannot read {name}"))?;
-                    serde_json::from_str(&text).map_err(|e| anyhow!("{name}: {e}"))
-                }
+                Some(path) => crate::text::read_json(&path, "a TRAINING.json"),
             },
         }
     }
@@ -128,6 +196,153 @@ fn check_in_progress(p: &Project) -> Result<(), integrate::project::ProjectError
     }
     complete.facades.retain(|f| mapped(&f.image));
     Project::from_toml(&complete.to_toml()).map(|_| ())
+}
+
+/// Line and column (from 1, columns in characters) of byte `offset` of `text`.
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+    (line, col)
+}
+
+/// `p` written over the user's PROJECT.toml `old`: values that did not change keep their text,
+/// comments and place; changed ones take the new value with the old one's surrounding comments;
+/// new keys and tables are appended. If the patched text would not read back as `p` (a layout
+/// the patch cannot follow), the plain `to_toml` text is written instead.
+fn patched(old: &str, p: &Project) -> String {
+    let plain = p.to_toml();
+    let (Ok(mut doc), Ok(new)) = (
+        old.parse::<toml_edit::DocumentMut>(),
+        plain.parse::<toml_edit::DocumentMut>(),
+    ) else {
+        return plain;
+    };
+    patch_table(doc.as_table_mut(), new.as_table());
+    let text = doc.to_string();
+    match toml::from_str::<Project>(&text) {
+        Ok(back) if back.to_toml() == plain => text,
+        _ => plain,
+    }
+}
+
+fn patch_table(old: &mut dyn toml_edit::TableLike, new: &dyn toml_edit::TableLike) {
+    let gone: Vec<String> = old
+        .iter()
+        .map(|(k, _)| k.to_string())
+        .filter(|k| !new.contains_key(k))
+        .collect();
+    for k in gone {
+        old.remove(&k);
+    }
+    for (k, v) in new.iter() {
+        match old.get_mut(k) {
+            Some(item) => patch_item(item, v),
+            None => {
+                old.insert(k, compacted(v));
+            }
+        }
+    }
+}
+
+fn patch_item(old: &mut toml_edit::Item, new: &toml_edit::Item) {
+    use toml_edit::Item;
+    if let (Some(o), Some(n)) = (old.as_array_of_tables_mut(), new.as_array_of_tables()) {
+        let keep = o.len().min(n.len());
+        for (i, t) in n.iter().enumerate().take(keep) {
+            if let Some(ot) = o.get_mut(i) {
+                patch_table(ot, t);
+            }
+        }
+        while o.len() > n.len() {
+            o.remove(o.len() - 1);
+        }
+        for t in n.iter().skip(keep) {
+            if let Item::Table(t) = compacted(&Item::Table(t.clone())) {
+                o.push(t);
+            }
+        }
+        return;
+    }
+    if let (Some(o), Some(n)) = (old.as_table_like_mut(), new.as_table_like()) {
+        patch_table(o, n);
+        return;
+    }
+    if let (Some(o), Some(n)) = (old.as_value(), new.as_value()) {
+        if same_value(o, n) {
+            return;
+        }
+        let Item::Value(mut v) = compacted(new) else {
+            return;
+        };
+        *v.decor_mut() = o.decor().clone();
+        *old = Item::Value(v);
+        return;
+    }
+    *old = compacted(new);
+}
+
+/// `item` with its arrays and inline tables on one line each (`[[320.0, 303.0]]`), as a person
+/// writes them, rather than one number a line.
+fn compacted(i: &toml_edit::Item) -> toml_edit::Item {
+    fn value(v: &mut toml_edit::Value) {
+        match v {
+            toml_edit::Value::Array(a) => {
+                a.iter_mut().for_each(value);
+                a.fmt();
+                a.set_trailing_comma(false);
+                a.set_trailing("");
+            }
+            toml_edit::Value::InlineTable(t) => {
+                t.iter_mut().for_each(|(_, v)| value(v));
+                t.fmt();
+            }
+            _ => {}
+        }
+    }
+    fn item(i: &mut toml_edit::Item) {
+        match i {
+            toml_edit::Item::Value(v) => value(v),
+            toml_edit::Item::Table(t) => t.iter_mut().for_each(|(_, i)| item(i)),
+            toml_edit::Item::ArrayOfTables(a) => a
+                .iter_mut()
+                .for_each(|t| t.iter_mut().for_each(|(_, i)| item(i))),
+            toml_edit::Item::None => {}
+        }
+    }
+    let mut out = i.clone();
+    item(&mut out);
+    out
+}
+
+/// Whether two TOML values are equal as data (`255` and `255.0`, `[1,2]` and `[ 1, 2 ]`):
+/// PROJECT.toml's numbers are all read as f64, and the user's integers must stay as written.
+fn same_value(a: &toml_edit::Value, b: &toml_edit::Value) -> bool {
+    use toml::Value as V;
+    fn same(a: &V, b: &V) -> bool {
+        match (a, b) {
+            (V::Integer(i), V::Float(f)) | (V::Float(f), V::Integer(i)) => *i as f64 == *f,
+            (V::Array(x), V::Array(y)) => {
+                x.len() == y.len() && x.iter().zip(y).all(|(a, b)| same(a, b))
+            }
+            (V::Table(x), V::Table(y)) => {
+                x.len() == y.len() && x.iter().all(|(k, a)| y.get(k).is_some_and(|b| same(a, b)))
+            }
+            _ => a == b,
+        }
+    }
+    let data = |v: &toml_edit::Value| {
+        let mut v = v.clone();
+        v.decor_mut().clear();
+        toml::from_str::<toml::Table>(&format!("v = {v}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+    };
+    matches!((data(a), data(b)), (Some(x), Some(y)) if same(&x, &y))
 }
 
 /// `name` as a relative path of plain components; absolute paths, `..`, `.`-prefixed

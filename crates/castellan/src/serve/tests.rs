@@ -26,11 +26,34 @@ pub(super) fn saved_project(dir: &Path) -> integrate::project::Project {
     store::Store::open(dir).unwrap().load().unwrap().unwrap()
 }
 
+/// The token and address the test apps use.
+pub(super) const TOKEN: &str = "0123456789abcdef";
+pub(super) const HOST: &str = "127.0.0.1:8080";
+
 pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
-    router(api::App::new(store::Store::open(dir).unwrap(), max_upload))
+    let access = super::Access::new(
+        TOKEN.into(),
+        HOST.parse().unwrap(),
+        std::time::Duration::from_secs(5),
+    );
+    router(api::App::new(
+        store::Store::open(dir).unwrap(),
+        max_upload,
+        access,
+    ))
 }
 
-pub(super) async fn send(app: &axum::Router, req: Request<Body>) -> (StatusCode, Vec<u8>) {
+/// Sends `req` as the page would: with the server's Host and the token, unless it has its own.
+pub(super) async fn send(app: &axum::Router, mut req: Request<Body>) -> (StatusCode, Vec<u8>) {
+    let h = req.headers_mut();
+    h.entry("host").or_insert(HOST.parse().unwrap());
+    h.entry(super::guard::TOKEN_HEADER)
+        .or_insert(TOKEN.parse().unwrap());
+    send_as_is(app, req).await
+}
+
+/// Sends `req` without adding anything.
+pub(super) async fn send_as_is(app: &axum::Router, req: Request<Body>) -> (StatusCode, Vec<u8>) {
     let res = app.clone().oneshot(req).await.unwrap();
     let status = res.status();
     let body = res.into_body().collect().await.unwrap().to_bytes().to_vec();
@@ -183,14 +206,13 @@ async fn uploads_create_the_project_and_register_facades() {
     assert_eq!(p.plan, "My_Plan.png");
     assert_eq!(p.facades.len(), 1);
     assert!(dir.path().join("keep.training.json").exists());
-    // Uploading the same photo again replaces it without listing it twice.
+    // Uploading a photo of the same name adds it under a fresh name (guard_tests.rs).
+    let (s, v) = upload(&app, "facade", "keep.png", &png_bytes(40, 30)).await;
     assert_eq!(
-        upload(&app, "facade", "keep.png", &png_bytes(40, 30))
-            .await
-            .0,
-        StatusCode::OK
+        (s, v["name"].as_str()),
+        (StatusCode::OK, Some("keep-2.png"))
     );
-    assert_eq!(saved_project(dir.path()).facades.len(), 1);
+    assert_eq!(saved_project(dir.path()).facades.len(), 2);
 }
 
 #[tokio::test]

@@ -10,7 +10,9 @@ import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import path from 'node:path';
 
+// The URL castellan serve printed, with its token (`http://127.0.0.1:PORT/?token=…`).
 const url = process.env.CASTELLAN_URL;
+const origin = new URL(url).origin;
 const shots = process.env.SCREENSHOTS;
 const expectStructures = Number(process.env.EXPECT_STRUCTURES);
 fs.mkdirSync(shots, { recursive: true });
@@ -33,7 +35,7 @@ try {
   const page = browser.pages()[0] || await browser.newPage();
   const external = [];
   // Textures decoded from the glb come as blob: and data: URLs of the page itself.
-  page.on('request', (r) => { if (!/^(blob:|data:)/.test(r.url()) && !r.url().startsWith(url)) external.push(r.url()); });
+  page.on('request', (r) => { if (!/^(blob:|data:)/.test(r.url()) && !r.url().startsWith(`${origin}/`)) external.push(r.url()); });
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
   page.setDefaultTimeout(60_000);
@@ -309,6 +311,26 @@ try {
   figures.uncut_changed_fraction = await changed();
   check(figures.uncut_changed_fraction < 0.001, `without the cut the picture is back (${figures.uncut_changed_fraction})`);
   figures.viewer_fps = await page.evaluate(() => window.castellanFps(120));
+  // Two tabs: the other saves a correspondence first, so this tab's save is refused (412) with
+  // a message asking to reload, rather than silently dropping the other's.
+  const other = await browser.newPage();
+  await other.goto(url);
+  await other.waitForSelector('body[data-ready=true]');
+  await other.locator('#corr-photo').click({ position: { x: 40, y: 40 } });
+  await other.locator('#corr-plan').click({ position: { x: 60, y: 60 } });
+  await other.click('#corr-add');
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('3 saved'));
+  await page.click('#corr-save');
+  await page.waitForFunction(() => /reload the page/.test(document.getElementById('status').textContent));
+  figures.stale_save_status = await page.textContent('#status');
+  await other.locator('#corr-list li').nth(2).locator('button').click();
+  await other.click('#corr-save');
+  await other.waitForFunction(() => document.getElementById('corr-info').textContent.includes('2 saved'));
+  await other.close();
+  await page.reload();
+  await page.waitForSelector('body[data-ready=true]');
+  check(await page.locator('#corr-list li').count() === 2, 'the reloaded page shows the saved correspondences');
   check(external.length === 0, `requests outside the server: ${external.join(', ')}`);
   check(errors.length === 0, `page errors: ${errors.join('; ')}`);
 } finally {

@@ -20,14 +20,23 @@ pub fn demo_project(into: &Path) -> PathBuf {
 
 pub struct Server {
     child: Child,
+    /// The printed URL, with the token: `http://127.0.0.1:PORT/?token=…`.
     pub url: String,
+    /// `127.0.0.1:PORT`.
     pub addr: String,
+    pub token: String,
 }
 
 impl Server {
     pub fn start(project: &Path) -> Server {
+        Server::start_with(project, &[])
+    }
+
+    /// The server with more flags.
+    pub fn start_with(project: &Path, flags: &[&str]) -> Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_castellan"))
             .args(["serve", project.to_str().unwrap(), "--port", "0"])
+            .args(flags)
             .stdout(Stdio::piped())
             .spawn()
             .unwrap();
@@ -40,20 +49,42 @@ impl Server {
             .find(|w| w.starts_with("http://"))
             .unwrap_or_else(|| panic!("no URL in the server's first line: {line:?}"))
             .to_string();
-        let addr = url
-            .trim_start_matches("http://")
-            .trim_end_matches('/')
-            .to_string();
-        Server { child, url, addr }
+        let rest = url.trim_start_matches("http://");
+        let addr = rest.split('/').next().unwrap().to_string();
+        let token = rest
+            .split_once("?token=")
+            .map(|(_, t)| t.to_string())
+            .unwrap_or_else(|| panic!("no token in the server's URL: {url}"));
+        Server {
+            child,
+            url,
+            addr,
+            token,
+        }
     }
 
-    /// One HTTP/1.1 request; the status code and the body.
+    /// One HTTP/1.1 request as the page makes it (the server's Host, the token); the status
+    /// code and the body.
     pub fn request(&self, method: &str, path: &str, body: &[u8]) -> (u16, Vec<u8>) {
+        let headers = format!(
+            "Host: {}\r\nX-Castellan-Token: {}\r\n",
+            self.addr, self.token
+        );
+        self.request_with(method, path, &headers, body)
+    }
+
+    /// One HTTP/1.1 request with exactly `headers` (each ending in CRLF) besides the body's.
+    pub fn request_with(
+        &self,
+        method: &str,
+        path: &str,
+        headers: &str,
+        body: &[u8],
+    ) -> (u16, Vec<u8>) {
         let mut s = TcpStream::connect(&self.addr).unwrap();
         write!(
             s,
-            "{method} {path} HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
-            self.addr,
+            "{method} {path} HTTP/1.1\r\n{headers}Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
             body.len()
         )
         .unwrap();
@@ -67,6 +98,17 @@ impl Server {
         let head = String::from_utf8_lossy(&raw[..split]).to_string();
         let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
         (status, raw[split + 4..].to_vec())
+    }
+}
+
+impl Server {
+    /// The server's peak resident memory (VmHWM), in KiB, where /proc tells it.
+    pub fn peak_rss_kib(&self) -> Option<u64> {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
+        status
+            .lines()
+            .find_map(|l| l.strip_prefix("VmHWM:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
     }
 }
 

@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744' };
 const state = {
   project: null, training: {}, facade: null, photos: {}, pending: null, corr: [],
-  strokes: [], lines: { horizontal: [], vertical: [] },
+  strokes: [], lines: { horizontal: [], vertical: [] }, version: null,
 };
 
 function status(text, error = false) {
@@ -17,15 +17,26 @@ function status(text, error = false) {
   s.className = error ? 'error' : '';
 }
 
+// The run's secret, from the URL castellan serve printed (`/?token=…`). Every API call sends it
+// in a header, which a page of another site cannot add; images and downloads use the cookie the
+// server set when it served this page.
+const TOKEN = new URLSearchParams(window.location.search).get('token') || '';
+
 async function api(method, url, body) {
-  const init = { method };
+  const init = { method, headers: { 'x-castellan-token': TOKEN } };
   if (body instanceof FormData) init.body = body;
   else if (body !== undefined) {
     init.body = JSON.stringify(body);
-    init.headers = { 'content-type': 'application/json' };
+    init.headers['content-type'] = 'application/json';
   }
+  // The project's version as this page last saw it: a change made meanwhile elsewhere (another
+  // tab, an editor) makes the server refuse the save (412) instead of losing that change.
+  if (method !== 'GET' && state.version) init.headers['if-match'] = state.version;
   const res = await fetch(url, init);
+  const version = res.headers.get('etag');
+  if (version) state.version = version;
   const data = await res.json().catch(() => ({ error: `${res.status} ${res.statusText}` }));
+  if (res.status === 403 && !TOKEN) throw new Error('open the URL castellan serve printed (it ends in ?token=…)');
   if (!res.ok) throw new Error(data.error || `${res.status}`);
   return data;
 }

@@ -50,10 +50,45 @@ pub struct Training {
 /// A training box clipped to the image: x0..x1, y0..y1 (exclusive ends).
 pub type PixelBox = [usize; 4];
 
+/// Most boxes one TRAINING.json may hold, over all classes. The classifier samples
+/// `samples_per_box` pixels of every box and fits one mixture component per box (§3.1.3), so
+/// its memory and time grow with the count: 200 000 boxes took 1.9 GB. A user draws tens;
+/// 1000 leaves room for generated sets and keeps the façade stage within a few MB of samples.
+pub const MAX_BOXES: usize = 1000;
+
 impl Training {
-    /// Checks the boxes against the image and returns them per class. Window and wall are
-    /// required; background is optional (without it the whole image is one façade).
+    /// Checks the boxes against the image and returns them per class, clipped to it. Window and
+    /// wall are required; background is optional (without it the whole image is one façade).
+    /// Refused, naming the class and the box's index: an unknown class, more than
+    /// [`MAX_BOXES`] boxes, a coordinate that is not finite, an inverted box (x1 < x0 or
+    /// y1 < y0), a box of zero area and a box with no pixel inside the image. A box that
+    /// overlaps an edge is clipped (a box dragged past the photo's edge means "up to the edge").
     pub fn boxes(&self, width: usize, height: usize) -> Result<BTreeMap<Class, Vec<PixelBox>>> {
+        let out = self.checked(width, height)?;
+        for need in [Class::Window, Class::Wall] {
+            if !out.contains_key(&need) {
+                return Err(FacadeError::BadTraining(format!(
+                    "no {} boxes: window and wall boxes are required (background is optional)",
+                    need.name()
+                )));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The checks of [`Training::boxes`] without requiring window and wall boxes: what a set
+    /// still being drawn must pass (an editor saves it before every class has its boxes).
+    pub fn validate(&self, width: usize, height: usize) -> Result<()> {
+        self.checked(width, height).map(|_| ())
+    }
+
+    fn checked(&self, width: usize, height: usize) -> Result<BTreeMap<Class, Vec<PixelBox>>> {
+        let count: usize = self.classes.values().map(Vec::len).sum();
+        if count > MAX_BOXES {
+            return Err(FacadeError::BadTraining(format!(
+                "{count} boxes, more than the limit of {MAX_BOXES}"
+            )));
+        }
         let mut out = BTreeMap::new();
         for (name, boxes) in &self.classes {
             let class = Class::ALL
@@ -65,35 +100,34 @@ impl Training {
                     ))
                 })?;
             let mut v = Vec::new();
-            for b in boxes {
+            for (i, b) in boxes.iter().enumerate() {
+                let bad =
+                    |why: &str| FacadeError::BadTraining(format!("{name} box {i} {b:?} {why}"));
                 if !b.iter().all(|c| c.is_finite()) {
-                    return Err(FacadeError::BadTraining(format!(
-                        "{name} box {b:?} is not finite"
-                    )));
+                    return Err(bad("has a coordinate that is not a finite number"));
                 }
-                let (x0, x1) = (b[0].min(b[2]), b[0].max(b[2]));
-                let (y0, y1) = (b[1].min(b[3]), b[1].max(b[3]));
+                let [x0, y0, x1, y1] = *b;
+                if x1 < x0 || y1 < y0 {
+                    return Err(bad(
+                        "is inverted ([x0, y0, x1, y1] needs x0 <= x1 and y0 <= y1)",
+                    ));
+                }
+                if x1 == x0 || y1 == y0 {
+                    return Err(bad("has zero area"));
+                }
                 let cx0 = x0.max(0.0).round() as usize;
                 let cy0 = y0.max(0.0).round() as usize;
                 let cx1 = (x1.min(width as f64)).round().max(0.0) as usize;
                 let cy1 = (y1.min(height as f64)).round().max(0.0) as usize;
                 if cx1 <= cx0 || cy1 <= cy0 {
-                    return Err(FacadeError::BadTraining(format!(
-                        "{name} box {b:?} has no pixels inside the {width}x{height} image"
+                    return Err(bad(&format!(
+                        "has no pixels inside the {width}x{height} image"
                     )));
                 }
                 v.push([cx0, cy0, cx1, cy1]);
             }
             if !v.is_empty() {
                 out.insert(class, v);
-            }
-        }
-        for need in [Class::Window, Class::Wall] {
-            if !out.contains_key(&need) {
-                return Err(FacadeError::BadTraining(format!(
-                    "no {} boxes: window and wall boxes are required (background is optional)",
-                    need.name()
-                )));
             }
         }
         Ok(out)
@@ -333,6 +367,79 @@ mod tests {
             ("wall", vec![[0.0, 0.0, 5.0, 5.0]]),
         ]);
         assert!(t.boxes(10, 10).is_err(), "an empty box");
+    }
+
+    fn refusal(b: [f64; 4]) -> String {
+        training(&[
+            ("wall", vec![[0.0, 0.0, 5.0, 5.0], b]),
+            ("window", vec![[1.0, 1.0, 4.0, 4.0]]),
+        ])
+        .boxes(10, 10)
+        .unwrap_err()
+        .to_string()
+    }
+
+    #[test]
+    fn an_inverted_training_box_is_refused() {
+        let e = refusal([8.0, 1.0, 2.0, 9.0]);
+        assert!(e.contains("wall box 1") && e.contains("inverted"), "{e}");
+        let e = refusal([1.0, 8.0, 9.0, 2.0]);
+        assert!(e.contains("wall box 1") && e.contains("inverted"), "{e}");
+    }
+
+    #[test]
+    fn a_zero_area_or_non_finite_training_box_is_refused() {
+        let e = refusal([3.0, 1.0, 3.0, 9.0]);
+        assert!(e.contains("wall box 1") && e.contains("zero area"), "{e}");
+        let e = refusal([1.0, 1.0, f64::INFINITY, 9.0]);
+        assert!(
+            e.contains("wall box 1") && e.contains("not a finite"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_training_box_outside_the_image_is_refused() {
+        let e = refusal([11.0, 11.0, 20.0, 20.0]);
+        assert!(
+            e.contains("wall box 1") && e.contains("no pixels inside"),
+            "{e}"
+        );
+        let e = refusal([-9.0, 2.0, -1.0, 5.0]);
+        assert!(e.contains("no pixels inside"), "{e}");
+        // Overlapping an edge is clipped to it.
+        let t = training(&[
+            ("wall", vec![[-3.0, 0.0, 5.0, 12.0]]),
+            ("window", vec![[1.0, 1.0, 4.0, 4.0]]),
+        ]);
+        assert_eq!(t.boxes(10, 10).unwrap()[&Class::Wall], vec![[0, 0, 5, 10]]);
+    }
+
+    #[test]
+    fn more_training_boxes_than_the_limit_are_refused() {
+        let mut t = training(&[
+            ("wall", vec![[0.0, 0.0, 5.0, 5.0]; MAX_BOXES - 1]),
+            ("window", vec![[1.0, 1.0, 4.0, 4.0]]),
+        ]);
+        assert!(t.boxes(10, 10).is_ok());
+        t.classes
+            .get_mut("window")
+            .unwrap()
+            .push([1.0, 1.0, 4.0, 4.0]);
+        let e = t.validate(10, 10).unwrap_err().to_string();
+        assert!(
+            e.contains("1001 boxes") && e.contains("limit of 1000"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_set_being_drawn_validates_without_window_and_wall() {
+        let t = training(&[("wall", vec![[0.0, 0.0, 5.0, 5.0]])]);
+        assert!(t.validate(10, 10).is_ok());
+        assert!(t.boxes(10, 10).is_err());
+        let t = training(&[("door", vec![[0.0, 0.0, 5.0, 5.0]])]);
+        assert!(t.validate(10, 10).is_err());
     }
 
     #[test]
