@@ -239,3 +239,19 @@ fn scale_bar_without_a_drawn_bar_is_refused() {
         "no drawn scale bar found",
     );
 }
+
+/// Issue 19: an inverted training box in a photo was silently reordered when mapped into the
+/// rectified façade; it is refused naming the façade entry and the box.
+#[test]
+fn an_inverted_training_box_in_a_photo_is_refused() {
+    fails_naming(
+        |t| {
+            t.replacen(
+                "training = \"keep_south_far.training.json\"",
+                "training = { classes = { wall = [[50.0, 50.0, 10.0, 10.0]], window = [[60.0, 60.0, 80.0, 80.0]] } }",
+                1,
+            )
+        },
+        "[[facade]] #2 (image = \"keep_south_far.png\"): training:",
+    );
+}
