@@ -10,12 +10,18 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use proptest::prelude::*;
 
-/// Cases per test: `PROPTEST_CASES` when set, else `default` (kept small for CI).
-fn cases(default: u32) -> u32 {
-    std::env::var("PROPTEST_CASES")
+/// `default` cases (kept small for CI) unless `PROPTEST_CASES` says otherwise; failures are
+/// reported, not saved into src/ (every fuzz test of the binary uses this).
+pub(crate) fn config(default: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
+        .unwrap_or(default);
+    ProptestConfig {
+        cases,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// Runs `castellan ARGS…` in-process.
@@ -148,7 +154,7 @@ fn format() -> impl Strategy<Value = Format> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(24), ..ProptestConfig::default() })]
+    #![proptest_config(config(24))]
 
     /// Every image-reading command on a mutated small image: a result or an error, and after an
     /// error no output file.
@@ -279,7 +285,7 @@ fn edit(text: &str, e: &TomlEdit) -> Vec<u8> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(12), ..ProptestConfig::default() })]
+    #![proptest_config(config(12))]
 
     /// `reconstruct` on the demo project with a mutated PROJECT.toml: a model or an error that
     /// names the file, and after an error no OUTDIR.

@@ -15,6 +15,15 @@ fn cases(default: u32) -> u32 {
         .unwrap_or(default)
 }
 
+/// Failures are reported, not saved into the source tree.
+fn config(default: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases: cases(default),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
+}
+
 fn value() -> impl Strategy<Value = String> {
     prop_oneof![
         Just("1e300".to_string()),
@@ -121,7 +130,7 @@ fn check_accepted(text: &str) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(256), ..ProptestConfig::default() })]
+    #![proptest_config(config(256))]
 
     #[test]
     fn fuzz_arbitrary_text_never_panics(text in "\\PC{0,200}") {

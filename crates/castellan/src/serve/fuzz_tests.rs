@@ -11,22 +11,9 @@ use axum::http::{Request, StatusCode};
 use facade::classify::Training;
 use facade::rectify::ManualLines;
 use proptest::prelude::*;
-use proptest::test_runner::Config;
 
 use super::tests::{app, demo_project, send};
-
-/// `default` cases unless PROPTEST_CASES says otherwise; failures are not saved into src/.
-fn config(default: u32) -> Config {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default);
-    Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
+use crate::fuzz_tests::config;
 
 const TRAINING: &str = r#"{"classes": {"window": [[10, 10, 20, 20], [30.5, 10, 40, 22]],
  "wall": [[0, 0, 60, 8]], "background": [[0, 40, 64, 48]]}}"#;
