@@ -16,6 +16,16 @@ use crate::ast::{
 };
 use crate::diag::{Diagnostic, LineIndex, MAX_RENDERED, Text};
 
+/// Deepest import nesting (`a` imports `b` imports `c` …); splicing recurses once per level.
+pub const MAX_IMPORT_DEPTH: usize = 32;
+/// Most imports one program may load, counting each time a file is imported (the demo castle
+/// loads a few hundred).
+pub const MAX_IMPORTS: usize = 2_000;
+/// Most text all loaded files may add up to, in bytes. With [`MAX_IMPORTS`] this stops imports
+/// that fan out (`a` imports `b` twice, `b` imports `c` twice, …) before they grow
+/// exponentially.
+pub const MAX_IMPORTED_BYTES: usize = 64 << 20;
+
 /// Finds imported programs for the caller (the binary reads files; tests keep them in memory).
 pub trait Resolver {
     /// Loads `path` as written in an import inside the program named `from`. Returns the name
@@ -60,6 +70,11 @@ impl Sources {
             lines,
         });
         base
+    }
+
+    /// Total length of the texts.
+    fn bytes(&self) -> usize {
+        self.files.last().map_or(0, |f| f.base + f.text.len())
     }
 
     /// Index in `files` of the file holding combined offset `at` (bases increase).
@@ -156,6 +171,24 @@ fn splice(
             out.push(item);
             continue;
         };
+        let limit = |why: String| {
+            vec![Diagnostic::new(
+                format!("cannot import \"{}\": {why}", import.path.value),
+                import.path.span,
+                "imported here",
+            )]
+        };
+        if stack.len() > MAX_IMPORT_DEPTH {
+            return Err(limit(format!(
+                "imports nest more than {MAX_IMPORT_DEPTH} deep ({} -> ...)",
+                stack[..3].join(" -> ")
+            )));
+        }
+        if sources.files.len() > MAX_IMPORTS {
+            return Err(limit(format!(
+                "the program loads more than {MAX_IMPORTS} imports (is a file imported many times over?)"
+            )));
+        }
         let from = stack.last().cloned().unwrap_or_default();
         let (name, text) = resolver.load(&from, &import.path.value).map_err(|why| {
             vec![Diagnostic::new(
@@ -171,6 +204,12 @@ fn splice(
                 import.path.span,
                 "imported again here",
             )]);
+        }
+        if sources.bytes() + text.len() > MAX_IMPORTED_BYTES {
+            return Err(limit(format!(
+                "the program and its imports exceed {} MiB of text (is a file imported many times over?)",
+                MAX_IMPORTED_BYTES >> 20
+            )));
         }
         let base = sources.add(name.clone(), text.clone());
         let mut sub = crate::parse::parse(&text).map_err(|ds| {
