@@ -138,6 +138,16 @@ impl<'a> Text<'a> {
     }
 }
 
+/// A number for a message: as Rust writes it when that reads well (0, or 1e-4 ≤ |v| < 1e9),
+/// otherwise in scientific notation, so `1e308` is not spelled out in 309 digits.
+pub fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// 1-based line and character column of byte offset `at`, for one lookup (many go through one
 /// [`LineIndex`]).
 pub fn line_col(src: &str, at: usize) -> (usize, usize) {

@@ -7,7 +7,7 @@ use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
 use crate::ast::{BinaryOp, Expr, Ident, UnaryOp};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, num};
 
 /// A declared value.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,7 +101,8 @@ impl Scope<'_> {
                 if i < 0.0 || i.fract() != 0.0 || i as usize >= values.len() {
                     return Err(Diagnostic::new(
                         format!(
-                            "index {i} is out of range for '{}', which has {} elements (0..{})",
+                            "index {} is out of range for '{}', which has {} elements (0..{})",
+                            num(i),
                             array.name,
                             values.len(),
                             values.len().saturating_sub(1)

@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::ast::{AppearanceValue, Expr, Length, OpKind, Span};
 use crate::compile::{Compiled, CompiledRule, Geometry, Succ};
 use crate::csg::{self, MeshBoolean};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, num};
 use crate::eval::{Scope, ShapeAttrs};
 use crate::partition::{self, Len};
 use crate::shape::{self, Axis, Primitive, ShapeError, Tessellation};
@@ -141,7 +141,7 @@ impl Producer<'_, '_> {
                         let w = scope.eval(p)?;
                         if !(0.0..=1.0).contains(&w) {
                             return Err(Diagnostic::new(
-                                format!("probability {w} is outside 0..1"),
+                                format!("probability {} is outside 0..1", num(w)),
                                 p.span(),
                                 "probability",
                             ));
@@ -624,7 +624,7 @@ fn component(e: &Expr, scope: &mut Scope) -> Result<f64, Diagnostic> {
         Ok(v)
     } else {
         Err(Diagnostic::new(
-            format!("appearance value {v} is outside 0..1"),
+            format!("appearance value {} is outside 0..1", num(v)),
             e.span(),
             "outside 0..1",
         ))
@@ -661,7 +661,7 @@ fn density(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64
         Ok(v)
     } else {
         Err(Diagnostic::new(
-            format!("density {v} must be a positive number of kg/m³"),
+            format!("density {} must be a positive number of kg/m³", num(v)),
             e.span(),
             "not a density",
         ))

@@ -130,3 +130,27 @@ fn the_exporters_refuse_a_model_moved_out_of_f32_range_by_hand() {
     let e = to_obj(&model, &ExportOptions::default(), "m.mtl").unwrap_err();
     assert!(e.to_string().contains("not a finite 32-bit float"), "{e}");
 }
+
+#[test]
+fn huge_and_tiny_numbers_in_messages_are_written_in_scientific_notation() {
+    let e =
+        error("Axiom :: I(\"box\",{1,1,1}) appearance(\"color\", {1e300, 0, 0}){j3d.terminal};");
+    assert!(e.contains("appearance value 1e300 is outside 0..1"), "{e}");
+    let e = error("Axiom :: I(\"box\",{-1e-300,1,1}){j3d.terminal};");
+    assert!(e.contains("length = -1e-300 is invalid"), "{e}");
+    let e = error(
+        "Axiom :: I(\"box\",{2,1,1}){a};\na :: split(\"X\", {1e-300, 1}){b, b};\nb :: {j3d.terminal};",
+    );
+    assert!(e.contains("add up to 1, but the box measures 2"), "{e}");
+}
+
+#[test]
+fn a_tessellation_finer_than_the_cap_meshes_as_the_cap() {
+    use vsg::shape::{Primitive, ShapeType, Tessellation};
+    let cylinder = Primitive::new(ShapeType::Cylinder, &[1.0, 2.0]).unwrap();
+    let capped = cylinder.mesh(&Tessellation {
+        segments: Tessellation::MAX_SEGMENTS,
+    });
+    let asked = cylinder.mesh(&Tessellation { segments: u32::MAX });
+    assert_eq!(asked.triangles.len(), capped.triangles.len());
+}

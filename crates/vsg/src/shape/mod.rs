@@ -12,6 +12,7 @@ mod wedge;
 use nalgebra::Isometry3;
 use serde::Serialize;
 
+use crate::diag::num;
 use crate::mesh::TriMesh;
 
 /// Relative tolerance for split lengths that must add up to a shape's extent.
@@ -278,7 +279,7 @@ pub enum ShapeError {
         names: String,
         found: usize,
     },
-    #[error("{kind} parameter {name} = {value} is invalid: {why}")]
+    #[error("{kind} parameter {name} = {} is invalid: {why}", num(*.value))]
     BadParam {
         kind: ShapeType,
         name: &'static str,
@@ -291,10 +292,12 @@ pub enum ShapeError {
         axis: Axis,
         allowed: String,
     },
-    #[error("split length #{index} is {value}; lengths must be finite and positive")]
+    #[error("split length #{index} is {}; lengths must be finite and positive", num(*.value))]
     BadLength { index: usize, value: f64 },
     #[error(
-        "split lengths along {axis} add up to {sum}, but the {kind} measures {extent} along {axis}"
+        "split lengths along {axis} add up to {}, but the {kind} measures {} along {axis}",
+        num(*.sum),
+        num(*.extent)
     )]
     LengthsDontFit {
         kind: ShapeType,
@@ -352,9 +355,13 @@ impl Default for Tessellation {
 }
 
 impl Tessellation {
+    /// Most segments around a full circle (the binary's `--segments` bound): a library caller's
+    /// `u32::MAX` would otherwise ask for meshes of billions of triangles.
+    pub const MAX_SEGMENTS: u32 = 4096;
+
     /// Segments for an arc of `angle` radians.
     pub fn arc_segments(&self, angle: f64) -> u32 {
-        let full = self.segments.max(3) as f64;
+        let full = self.segments.clamp(3, Self::MAX_SEGMENTS) as f64;
         ((full * angle / std::f64::consts::TAU).ceil() as u32).max(1)
     }
 }
