@@ -33,9 +33,14 @@ pub enum PartitionError {
     BadOffset { offset: f64, extent: f64 },
     #[error(
         "repeat would create {} shapes, more than the limit of {limit}",
-        num(*.pieces)
+        count(*.pieces)
     )]
     TooManyPieces { pieces: f64, limit: usize },
+}
+
+/// A piece count: whole numbers written out, astronomical ones in scientific notation.
+fn count(n: f64) -> String {
+    if n < 1e15 { format!("{n}") } else { num(n) }
 }
 
 fn check_positive(lengths: &[Len]) -> Result<(), PartitionError> {

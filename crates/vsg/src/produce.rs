@@ -515,10 +515,10 @@ fn check_placement(at: &Isometry3<f64>, what: &str, span: Span) -> Result<(), Di
     }
     Err(Diagnostic::new(
         format!(
-            "'{what}' would be placed at ({:e}, {:e}, {:e}), more than {:e} m from the origin along an axis (shapes are stored as 32-bit floats); check the T() and split values that lead here",
-            t.x,
-            t.y,
-            t.z,
+            "'{what}' would be placed at ({}, {}, {}), more than {:e} m from the origin along an axis (shapes are stored as 32-bit floats); check the T() and split values that lead here",
+            num(t.x),
+            num(t.y),
+            num(t.z),
             shape::MAX_COORDINATE
         ),
         span,

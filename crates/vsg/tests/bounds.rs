@@ -68,7 +68,7 @@ fn a_parallelepiped_whose_offsets_add_past_the_bound_is_refused() {
 fn a_translation_out_of_bounds_is_refused_at_its_rule() {
     let e = error("Axiom :: I(\"box\",{1,1,1}){a};\na :: T(2e7, 0, 0){j3d.terminal};\n");
     assert!(
-        e.starts_with("p.vsg:2:1: 'a' would be placed at (2e7, 0e0, 0e0)"),
+        e.starts_with("p.vsg:2:1: 'a' would be placed at (20000000, 0, 0)"),
         "{e}"
     );
 }
