@@ -445,13 +445,21 @@ fn tokens(src: &str) -> Vec<(usize, usize)> {
     out
 }
 
+/// The char boundary at or before byte `at` (`str::floor_char_boundary` needs Rust 1.91).
+fn floor(src: &str, mut at: usize) -> usize {
+    while !src.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
+
 fn apply(src: &str, m: &Mutation) -> String {
     let toks = tokens(src);
     let tok = |i: usize| toks[i % toks.len()];
     let mut out = src.to_string();
     match m {
         Mutation::DeleteByte(i) => {
-            let at = src.floor_char_boundary(i % src.len());
+            let at = floor(src, i % src.len());
             out.remove(at);
         }
         Mutation::DeleteToken(i) => {
@@ -468,7 +476,7 @@ fn apply(src: &str, m: &Mutation) -> String {
             out.replace_range(a..b, &src[c..d]);
         }
         Mutation::InsertText(i, t) => {
-            let at = src.floor_char_boundary(i % src.len());
+            let at = floor(src, i % src.len());
             out.insert_str(at, t);
         }
     }

@@ -40,7 +40,11 @@ fn the_line_index_agrees_with_a_scan_of_the_text() {
     let src = "é\nab\n\n€x\ny";
     let index = vsg::diag::LineIndex::new(src);
     for at in 0..=src.len() {
-        let before = &src[..src.floor_char_boundary(at)];
+        let mut start = at;
+        while !src.is_char_boundary(start) {
+            start -= 1;
+        }
+        let before = &src[..start];
         let line = before.matches('\n').count() + 1;
         let col = before.rsplit('\n').next().unwrap().chars().count() + 1;
         assert_eq!(index.line_col(src, at), (line, col), "at byte {at}");
