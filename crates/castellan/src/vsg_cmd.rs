@@ -10,8 +10,8 @@ use clap::Args;
 
 pub fn run(args: &VsgRunArgs) -> Result<()> {
     let file = args.program.display().to_string();
-    let src =
-        std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
+    // Bounded, UTF-8 errors at line:col, a byte-order mark dropped (text.rs).
+    let src = crate::text::read_text(&args.program)?;
     let options = vsg::RunOptions {
         seed: args.seed,
         overrides: args.set.clone(),
@@ -150,15 +150,25 @@ impl vsg::import::Resolver for FileResolver {
         let candidates: Vec<PathBuf> = std::iter::once(here.join(path))
             .chain(self.lib.iter().map(|d| d.join(path)))
             .collect();
-        let Some(found) = candidates.iter().find(|c| c.is_file()) else {
+        let Some(found) = candidates.iter().find(|c| c.exists()) else {
             let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
             return Err(format!(
                 "no such file (looked in {}; add directories with --lib)",
                 looked.join(", ")
             ));
         };
-        let text = std::fs::read_to_string(found)
-            .map_err(|e| format!("cannot read {}: {e}", found.display()))?;
+        // A folder, a device such as /dev/zero or a pipe exists but is no program text.
+        if !found.is_file() {
+            let what = match std::fs::metadata(found) {
+                Ok(m) if m.is_dir() => "a folder",
+                _ => "a device or other special file",
+            };
+            return Err(format!(
+                "{} is {what}, not a regular file; import a .vsg program",
+                found.display()
+            ));
+        }
+        let text = crate::text::read_text(found).map_err(|e| format!("{e:#}"))?;
         Ok((found.display().to_string(), text))
     }
 }

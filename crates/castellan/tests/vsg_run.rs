@@ -306,3 +306,118 @@ fn textures_are_embedded_in_the_glb() {
         "the PNG is embedded byte for byte"
     );
 }
+
+// Issue 19: invalid geometry and hostile inputs fail with a clear message and write nothing.
+
+#[test]
+fn a_box_too_large_for_f32_is_refused_at_its_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("huge.vsg");
+    std::fs::write(
+        &program,
+        "Axiom :: I(\"box\",{1e308,1e308,1e308}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("m.glb");
+    let obj = dir.path().join("m.obj");
+    let e = failure_message(vsg_run(&program, &glb).arg("--obj").arg(&obj));
+    assert!(
+        e.contains("huge.vsg:1:10: box parameter length = 1e308"),
+        "{e}"
+    );
+    assert!(!glb.exists() && !obj.exists());
+}
+
+#[test]
+fn an_override_of_1e39_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("w.vsg");
+    std::fs::write(
+        &program,
+        "float w = 4;\nAxiom :: I(\"box\",{w,1,1}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("m.glb");
+    let e = failure_message(vsg_run(&program, &glb).args(["--set", "w=1e39"]));
+    assert!(e.contains("w.vsg:2:10:") && e.contains("1e39"), "{e}");
+    assert!(!glb.exists());
+}
+
+#[cfg(unix)]
+#[test]
+fn an_endless_program_file_is_refused_by_its_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = failure_message(&mut vsg_run(
+        Path::new("/dev/zero"),
+        &dir.path().join("m.glb"),
+    ));
+    assert!(e.contains("/dev/zero: larger than 16 MiB"), "{e}");
+}
+
+#[test]
+fn invalid_utf8_in_a_program_is_reported_at_its_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("bad.vsg");
+    std::fs::write(&program, b"Axiom :: {a};\na :: \xFF{j3d.terminal};\n").unwrap();
+    let e = failure_message(&mut vsg_run(&program, &dir.path().join("m.glb")));
+    assert!(e.contains("bad.vsg:2:6: not UTF-8 text"), "{e}");
+}
+
+#[test]
+fn a_program_with_a_bom_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("bom.vsg");
+    std::fs::write(
+        &program,
+        "\u{FEFF}Axiom :: I(\"box\",{1,2,3}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let glb = dir.path().join("m.glb");
+    vsg_run(&program, &glb).assert().success();
+    assert!(glb.exists());
+}
+
+#[cfg(unix)]
+#[test]
+fn import_of_a_device_file_says_what_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("dev.vsg");
+    std::fs::write(
+        &program,
+        "import \"/dev/zero\" as z;\nAxiom :: I(\"box\",{1,1,1}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let e = failure_message(&mut vsg_run(&program, &dir.path().join("m.glb")));
+    assert!(
+        e.contains("dev.vsg:1:8: cannot import \"/dev/zero\": /dev/zero is a device or other special file, not a regular file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn import_of_a_folder_says_what_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub.vsg")).unwrap();
+    let program = dir.path().join("main.vsg");
+    std::fs::write(
+        &program,
+        "import \"sub.vsg\" as s;\nAxiom :: I(\"box\",{1,1,1}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let e = failure_message(&mut vsg_run(&program, &dir.path().join("m.glb")));
+    assert!(e.contains("sub.vsg is a folder, not a regular file"), "{e}");
+}
+
+#[test]
+fn an_imported_program_with_invalid_utf8_is_reported_at_its_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("sub.vsg"), b"// ok\n\xC3(").unwrap();
+    let program = dir.path().join("main.vsg");
+    std::fs::write(
+        &program,
+        "import \"sub.vsg\" as s;\nAxiom :: I(\"box\",{1,1,1}){j3d.terminal};\n",
+    )
+    .unwrap();
+    let e = failure_message(&mut vsg_run(&program, &dir.path().join("m.glb")));
+    assert!(e.contains("sub.vsg:2:1: not UTF-8 text"), "{e}");
+}

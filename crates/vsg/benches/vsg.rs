@@ -1,5 +1,7 @@
 //! Production and export speed (issue: 1 M terminals produced < 1 s, 100 k exported < 1 s on
-//! 2 cores) and a peer comparison against the `symbios-shape` CGA engine on the same program.
+//! 2 cores), a peer comparison against the `symbios-shape` CGA engine on the same program, and
+//! compile time against the number of rules (issue 19: it was quadratic, each rule's line found
+//! by rescanning the text; 32 k rules took 10 s).
 //!
 //! `cargo bench -p vsg --bench vsg`
 
@@ -82,11 +84,33 @@ fn export(c: &mut Criterion) {
     group.finish();
 }
 
+/// `n` one-line rules (about 38 bytes each) after an axiom that uses the first: the program
+/// of issue 19, 32 k rules in 1.2 MB.
+pub fn many_rules(n: usize) -> String {
+    let mut src = String::from("Axiom :: I(\"box\", {1, 1, 1}){s0};\n");
+    for i in 0..n {
+        src += &format!("s{i} :: T(0, 0.{}, 0) {{j3d.terminal}};\n", i % 10);
+    }
+    src
+}
+
+fn compile(c: &mut Criterion) {
+    let mut group = c.benchmark_group("compile");
+    group.sample_size(10);
+    for n in [4_000, 32_000] {
+        let src = many_rules(n);
+        group.bench_function(format!("{n} rules ({} KB)", src.len() >> 10), |b| {
+            b.iter(|| vsg::run(black_box(&src), &options()).unwrap())
+        });
+    }
+    group.finish();
+}
+
 fn check_sizes(_: &mut Criterion) {
     assert_eq!(symbios_brick_wall(99, 1000), 99_000);
     let m = vsg::run(&brick_wall(99, 1000), &options()).unwrap();
     assert_eq!(m.terminals().count(), 99_000);
 }
 
-criterion_group!(benches, check_sizes, production, export);
+criterion_group!(benches, check_sizes, production, export, compile);
 criterion_main!(benches);

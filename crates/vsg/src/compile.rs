@@ -185,6 +185,12 @@ fn declarations(
                     decl.name.name, decl.name.name
                 )));
             }
+            if !v.is_finite() {
+                return Err(CompileError::Override(format!(
+                    "--set {}={v}: not a finite number",
+                    decl.name.name
+                )));
+            }
             vars.insert(decl.name.name.clone(), Value::Scalar(*v));
             continue;
         }

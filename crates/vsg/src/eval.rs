@@ -7,7 +7,7 @@ use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
 use crate::ast::{BinaryOp, Expr, Ident, UnaryOp};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, num};
 
 /// A declared value.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,7 +101,8 @@ impl Scope<'_> {
                 if i < 0.0 || i.fract() != 0.0 || i as usize >= values.len() {
                     return Err(Diagnostic::new(
                         format!(
-                            "index {i} is out of range for '{}', which has {} elements (0..{})",
+                            "index {} is out of range for '{}', which has {} elements (0..{})",
+                            num(i),
                             array.name,
                             values.len(),
                             values.len().saturating_sub(1)
@@ -244,8 +245,13 @@ impl Scope<'_> {
                 let (lo, hi) = (x[0].min(x[1]), x[0].max(x[1]));
                 if lo == hi {
                     lo
-                } else {
+                } else if (hi - lo).is_finite() {
                     self.rng.random_range(lo..hi)
+                } else {
+                    // A range wider than f64 (rand(-1e308, 1e308)) would make random_range
+                    // panic; interpolating never overflows.
+                    let u: f64 = self.rng.random();
+                    (lo * (1.0 - u) + hi * u).clamp(lo, hi)
                 }
             }
             _ => unreachable!("arity table and dispatch list the same functions"),
@@ -358,6 +364,22 @@ mod tests {
             bin(BinaryOp::Div, num(1.0), num(0.0)),
         );
         assert_eq!(with_scope(|s| s.eval(&e)).unwrap(), 0.0);
+    }
+
+    #[test]
+    fn rand_over_a_range_wider_than_f64_is_a_number_in_it() {
+        let call = Expr::Call {
+            function: Ident {
+                name: "rand".into(),
+                span: Span::default(),
+            },
+            args: vec![num(1e308), num(-1e308)],
+            span: Span::default(),
+        };
+        for _ in 0..100 {
+            let r = with_scope(|s| s.eval(&call)).unwrap();
+            assert!((-1e308..=1e308).contains(&r), "{r}");
+        }
     }
 
     #[test]

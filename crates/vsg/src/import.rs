@@ -14,7 +14,17 @@ use std::collections::HashSet;
 use crate::ast::{
     AppearanceValue, DeclValue, Expr, Ident, Import, Item, OpKind, Program, Span, Successor,
 };
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, LineIndex, MAX_RENDERED, Text};
+
+/// Deepest import nesting (`a` imports `b` imports `c` …); splicing recurses once per level.
+pub const MAX_IMPORT_DEPTH: usize = 32;
+/// Most imports one program may load, counting each time a file is imported (the demo castle
+/// loads a few hundred).
+pub const MAX_IMPORTS: usize = 2_000;
+/// Most text all loaded files may add up to, in bytes. With [`MAX_IMPORTS`] this stops imports
+/// that fan out (`a` imports `b` twice, `b` imports `c` twice, …) before they grow
+/// exponentially.
+pub const MAX_IMPORTED_BYTES: usize = 64 << 20;
 
 /// Finds imported programs for the caller (the binary reads files; tests keep them in memory).
 pub trait Resolver {
@@ -39,6 +49,8 @@ pub struct SourceFile {
     pub name: String,
     pub text: String,
     pub base: usize,
+    /// Line starts of `text`, so each rule's line is a binary search.
+    lines: LineIndex,
 }
 
 /// Every file of a program with its imports, the main program first.
@@ -50,34 +62,79 @@ pub struct Sources {
 impl Sources {
     fn add(&mut self, name: String, text: String) -> usize {
         let base = self.files.last().map_or(0, |f| f.base + f.text.len() + 1);
-        self.files.push(SourceFile { name, text, base });
+        let lines = LineIndex::new(&text);
+        self.files.push(SourceFile {
+            name,
+            text,
+            base,
+            lines,
+        });
         base
+    }
+
+    /// Total length of the texts.
+    fn bytes(&self) -> usize {
+        self.files.last().map_or(0, |f| f.base + f.text.len())
+    }
+
+    /// Index in `files` of the file holding combined offset `at` (bases increase).
+    fn index_of(&self, at: usize) -> Option<usize> {
+        self.files.partition_point(|f| f.base <= at).checked_sub(1)
     }
 
     /// The file holding combined offset `at`.
     pub fn file_of(&self, at: usize) -> Option<&SourceFile> {
-        self.files.iter().rev().find(|f| f.base <= at)
+        self.index_of(at).map(|i| &self.files[i])
     }
 
     /// 1-based line of a span in its own file.
     pub fn line(&self, span: Span) -> u32 {
         match self.file_of(span.start) {
-            Some(f) => crate::diag::line_col(&f.text, span.start - f.base).0 as u32,
+            Some(f) => f.lines.line(span.start - f.base) as u32,
             None => 0,
         }
+    }
+
+    /// Renders diagnostics in source order, each in the file it points into; those in the main
+    /// program under the caller's `file` and `src`. Shows at most [`MAX_RENDERED`], then counts
+    /// the rest; each file's text is indexed once, however many diagnostics point into it.
+    pub fn render_all(&self, file: &str, src: &str, diagnostics: &[Diagnostic]) -> String {
+        let main = Text::new(file, src);
+        let mut texts: Vec<Option<Text>> = self.files.iter().map(|_| None).collect();
+        let mut out = Vec::new();
+        for d in diagnostics.iter().take(MAX_RENDERED) {
+            out.push(match self.index_of(d.span.start) {
+                Some(i) if i > 0 => {
+                    let f = &self.files[i];
+                    let text = texts[i].get_or_insert_with(|| Text::new(&f.name, &f.text));
+                    text.render(&local(d, f.base))
+                }
+                _ => main.render(d),
+            });
+        }
+        if diagnostics.len() > MAX_RENDERED {
+            out.push(format!(
+                "{file}: and {} more errors\n",
+                diagnostics.len() - MAX_RENDERED
+            ));
+        }
+        out.join("\n")
     }
 
     /// `file:line:col: message` with an excerpt, in the file the diagnostic points into.
     pub fn render(&self, d: &Diagnostic) -> String {
         match self.file_of(d.span.start) {
-            Some(f) => {
-                let mut local = d.clone();
-                local.span = Span::new(d.span.start - f.base, d.span.end - f.base);
-                local.render(&f.name, &f.text)
-            }
+            Some(f) => local(d, f.base).render(&f.name, &f.text),
             None => d.render("?", ""),
         }
     }
+}
+
+/// `d` with its span in the numbering of the file starting at `base`.
+fn local(d: &Diagnostic, base: usize) -> Diagnostic {
+    let mut local = d.clone();
+    local.span = Span::new(d.span.start - base, d.span.end.saturating_sub(base));
+    local
 }
 
 /// Parses `text` (named `name`) and splices in its imports, recursively.
@@ -114,6 +171,24 @@ fn splice(
             out.push(item);
             continue;
         };
+        let limit = |why: String| {
+            vec![Diagnostic::new(
+                format!("cannot import \"{}\": {why}", import.path.value),
+                import.path.span,
+                "imported here",
+            )]
+        };
+        if stack.len() > MAX_IMPORT_DEPTH {
+            return Err(limit(format!(
+                "imports nest more than {MAX_IMPORT_DEPTH} deep ({} -> ...)",
+                stack[..3].join(" -> ")
+            )));
+        }
+        if sources.files.len() > MAX_IMPORTS {
+            return Err(limit(format!(
+                "the program loads more than {MAX_IMPORTS} imports (is a file imported many times over?)"
+            )));
+        }
         let from = stack.last().cloned().unwrap_or_default();
         let (name, text) = resolver.load(&from, &import.path.value).map_err(|why| {
             vec![Diagnostic::new(
@@ -129,6 +204,12 @@ fn splice(
                 import.path.span,
                 "imported again here",
             )]);
+        }
+        if sources.bytes() + text.len() > MAX_IMPORTED_BYTES {
+            return Err(limit(format!(
+                "the program and its imports exceed {} MiB of text (is a file imported many times over?)",
+                MAX_IMPORTED_BYTES >> 20
+            )));
         }
         let base = sources.add(name.clone(), text.clone());
         let mut sub = crate::parse::parse(&text).map_err(|ds| {

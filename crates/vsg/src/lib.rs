@@ -80,18 +80,12 @@ pub enum Error {
 }
 
 impl Error {
-    /// All messages, each as `file:line:col: message` with an excerpt. `file` and `src` name
-    /// the main program; messages about imported programs name those.
+    /// The messages, each as `file:line:col: message` with an excerpt (at most
+    /// [`diag::MAX_RENDERED`], then a count of the rest). `file` and `src` name the main
+    /// program; messages about imported programs name those.
     pub fn render(&self, file: &str, src: &str) -> String {
         match self {
-            Error::Program(ds, sources) => ds
-                .iter()
-                .map(|d| match sources.files.get(1) {
-                    Some(f) if d.span.start >= f.base => sources.render(d),
-                    _ => d.render(file, src),
-                })
-                .collect::<Vec<_>>()
-                .join("\n"),
+            Error::Program(ds, sources) => sources.render_all(file, src, ds),
             Error::Override(m) => format!("{file}: {m}\n"),
         }
     }

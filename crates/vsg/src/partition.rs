@@ -2,6 +2,8 @@
 //! 7.1): relative (`~`) lengths take what absolute ones leave, and repeat tiles a pattern from
 //! an offset, the piece before the offset taking the cycle's last symbol.
 
+use crate::diag::num;
+
 /// Pieces shorter than this fraction of the extent are not created by `repeat` (they are merged
 /// into their neighbour), so floating-point noise never yields sliver shapes.
 pub const SLIVER_FRACTION: f64 = 1e-6;
@@ -16,15 +18,29 @@ pub enum Len {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PartitionError {
     #[error(
-        "absolute lengths add up to {absolute}, more than the extent {extent}, leaving nothing for the ~ lengths"
+        "absolute lengths add up to {}, more than the extent {}, leaving nothing for the ~ lengths",
+        num(*.absolute),
+        num(*.extent)
     )]
     NoRoomForRelative { absolute: f64, extent: f64 },
-    #[error("length #{index} is {value}; lengths must be positive")]
+    #[error("length #{index} is {}; lengths must be positive", num(*.value))]
     NonPositive { index: usize, value: f64 },
-    #[error("repeat offset {offset} must lie in [0, {extent}), the extent along the axis")]
+    #[error(
+        "repeat offset {} must lie in [0, {}), the extent along the axis",
+        num(*.offset),
+        num(*.extent)
+    )]
     BadOffset { offset: f64, extent: f64 },
-    #[error("repeat would create {pieces} shapes, more than the limit of {limit}")]
+    #[error(
+        "repeat would create {} shapes, more than the limit of {limit}",
+        count(*.pieces)
+    )]
     TooManyPieces { pieces: f64, limit: usize },
+}
+
+/// A piece count: whole numbers written out, astronomical ones in scientific notation.
+fn count(n: f64) -> String {
+    if n < 1e15 { format!("{n}") } else { num(n) }
 }
 
 fn check_positive(lengths: &[Len]) -> Result<(), PartitionError> {

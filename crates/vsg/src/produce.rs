@@ -11,10 +11,10 @@ use rand_chacha::ChaCha8Rng;
 use crate::ast::{AppearanceValue, Expr, Length, OpKind, Span};
 use crate::compile::{Compiled, CompiledRule, Geometry, Succ};
 use crate::csg::{self, MeshBoolean};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, num};
 use crate::eval::{Scope, ShapeAttrs};
 use crate::partition::{self, Len};
-use crate::shape::{Axis, Primitive, ShapeError, Tessellation};
+use crate::shape::{self, Axis, Primitive, ShapeError, Tessellation};
 use crate::tree::{Appearance, Model, Node, NodeId, NodeState, TextureFrame, UniqueShape};
 
 /// Bounds on production, so a runaway grammar stops with an error instead of eating memory.
@@ -141,7 +141,7 @@ impl Producer<'_, '_> {
                         let w = scope.eval(p)?;
                         if !(0.0..=1.0).contains(&w) {
                             return Err(Diagnostic::new(
-                                format!("probability {w} is outside 0..1"),
+                                format!("probability {} is outside 0..1", num(w)),
                                 p.span(),
                                 "probability",
                             ));
@@ -213,8 +213,12 @@ impl Producer<'_, '_> {
         {
             let n = &mut self.model.nodes[id as usize];
             if only.local != Isometry3::identity() {
+                let world = n.world * only.local;
+                let name = &self.model.symbols[n.symbol as usize];
+                check_placement(&only.local, name, rule.ast.span)?;
+                check_placement(&world, name, rule.ast.span)?;
                 n.local *= only.local;
-                n.world *= only.local;
+                n.world = world;
             }
             n.appearance = appearance;
             n.state = if void {
@@ -246,6 +250,16 @@ impl Producer<'_, '_> {
                 rule.ast.span,
                 "creating shapes here",
             ));
+        }
+        for out in &outputs {
+            let symbol = match rule.successors[out.successor] {
+                Succ::Symbol(s) => s,
+                Succ::Terminal => parent.symbol,
+            };
+            let name = &self.model.symbols[symbol as usize];
+            // The local placement first: an infinite one turns into NaN in the world.
+            check_placement(&out.local, name, rule.ast.span)?;
+            check_placement(&(parent.world * out.local), name, rule.ast.span)?;
         }
         for (index, out) in outputs.into_iter().enumerate() {
             let (symbol, state) = match rule.successors[out.successor] {
@@ -407,6 +421,10 @@ impl Producer<'_, '_> {
                 }
                 OpKind::Void => void = true,
                 OpKind::Combine(kind) => {
+                    // The meshes are placed before the Boolean: refuse absurd places first.
+                    for o in &outputs {
+                        check_placement(&o.local, "an operand", op.span)?;
+                    }
                     let unique = self
                         .combine(*kind, &outputs)
                         .map_err(|e| Diagnostic::new(e.to_string(), op.span, "this Boolean"))?;
@@ -485,6 +503,27 @@ impl Producer<'_, '_> {
         }
         id
     }
+}
+
+/// Refuses a placement of the shape `what` that is not finite or lies farther than
+/// [`shape::MAX_COORDINATE`] from the origin along an axis (see there why).
+fn check_placement(at: &Isometry3<f64>, what: &str, span: Span) -> Result<(), Diagnostic> {
+    let t = at.translation.vector;
+    let finite_rotation = at.rotation.coords.iter().all(|c| c.is_finite());
+    if t.iter().all(|&c| shape::within_bounds(c)) && finite_rotation {
+        return Ok(());
+    }
+    Err(Diagnostic::new(
+        format!(
+            "'{what}' would be placed at ({}, {}, {}), more than {:e} m from the origin along an axis (shapes are stored as 32-bit floats); check the T() and split values that lead here",
+            num(t.x),
+            num(t.y),
+            num(t.z),
+            shape::MAX_COORDINATE
+        ),
+        span,
+        "places a shape out of bounds",
+    ))
 }
 
 fn eval_len(scope: &mut Scope, l: &Length) -> Result<Len, Diagnostic> {
@@ -585,7 +624,7 @@ fn component(e: &Expr, scope: &mut Scope) -> Result<f64, Diagnostic> {
         Ok(v)
     } else {
         Err(Diagnostic::new(
-            format!("appearance value {v} is outside 0..1"),
+            format!("appearance value {} is outside 0..1", num(v)),
             e.span(),
             "outside 0..1",
         ))
@@ -622,7 +661,7 @@ fn density(value: &AppearanceValue, scope: &mut Scope, span: Span) -> Result<f64
         Ok(v)
     } else {
         Err(Diagnostic::new(
-            format!("density {v} must be a positive number of kg/m³"),
+            format!("density {} must be a positive number of kg/m³", num(v)),
             e.span(),
             "not a density",
         ))

@@ -143,3 +143,62 @@ fn rule_lines_are_lines_of_the_imported_file() {
     let floor = m.terminals().next().unwrap();
     assert_eq!(floor.rule_line, 4);
 }
+
+/// Files `f0.vsg`, `f1.vsg`, … each importing the next `fan` times up to `f{last}.vsg`: an
+/// endless chain (`fan` 1) or an exponential tree (`fan` 2). Counts the loads.
+struct Endless {
+    fan: usize,
+    last: usize,
+    loads: usize,
+}
+
+impl Resolver for Endless {
+    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
+        self.loads += 1;
+        let n: usize = path[1..path.len() - 4].parse().unwrap();
+        if n == self.last {
+            return Ok((path.to_string(), "Axiom :: {j3d.terminal};\n".into()));
+        }
+        let mut text = String::new();
+        for k in 0..self.fan {
+            text += &format!("import \"f{}.vsg\" as x{k};\n", n + 1);
+        }
+        text += "Axiom :: {x0.Axiom};\n";
+        Ok((path.to_string(), text))
+    }
+}
+
+#[test]
+fn an_endless_chain_of_imports_stops_at_the_depth_limit() {
+    let src = "import \"f0.vsg\" as x0;\nAxiom :: {x0.Axiom};\n";
+    let mut files = Endless {
+        fan: 1,
+        last: usize::MAX,
+        loads: 0,
+    };
+    let e = vsg::run_with("main.vsg", src, &RunOptions::default(), &mut files)
+        .unwrap_err()
+        .render("main.vsg", src);
+    assert!(e.contains("imports nest more than 32 deep"), "{e}");
+    assert_eq!(files.loads, vsg::import::MAX_IMPORT_DEPTH);
+}
+
+#[test]
+fn imports_that_fan_out_stop_before_growing_exponentially() {
+    let src = "import \"f0.vsg\" as x0;\nAxiom :: {x0.Axiom};\n";
+    // 2^21 loads within the depth limit.
+    let mut files = Endless {
+        fan: 2,
+        last: 20,
+        loads: 0,
+    };
+    let e = vsg::run_with("main.vsg", src, &RunOptions::default(), &mut files)
+        .unwrap_err()
+        .render("main.vsg", src);
+    assert!(e.contains("loads more than 2000 imports"), "{e}");
+    assert!(
+        files.loads <= vsg::import::MAX_IMPORTS + 1,
+        "{}",
+        files.loads
+    );
+}

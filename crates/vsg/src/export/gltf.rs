@@ -10,8 +10,8 @@ use serde::Serialize;
 
 use super::shading::{ShadedMesh, shade};
 use super::{
-    ExportError, ExportOptions, Geometry, Palette, ShapeKey, Textures, check_model, solid_mesh,
-    solid_volume, unit,
+    ExportError, ExportOptions, Geometry, Palette, ShapeKey, Textures, check_model, finite_f32,
+    solid_mesh, solid_volume, unit,
 };
 use crate::tree::{Appearance, Model, NodeState};
 
@@ -137,17 +137,24 @@ pub(super) fn write_glb(
             b.uv_frame = None;
         }
         let shape = node.shape.as_ref();
+        let what = |field: &'static str| {
+            move || format!("the {field} of node {i} ({})", model.symbol(node))
+        };
+        let volume = solid.map(|s| solid_volume(&s, geometry));
+        if let Some(v) = volume {
+            finite_f32([v], what("volume"))?;
+        }
         let extras = NodeExtras {
             shape_type: solid.map(|s| s.name()),
             params: shape.map_or(&[], |p| p.params()),
-            volume: solid.map(|s| solid_volume(&s, geometry)),
+            volume,
             rule_line: node.rule_line,
             state: node.state,
         };
         let t = node.local.translation.vector;
         let q = node.local.rotation.coords; // i, j, k, w
-        let translation = [t.x as f32, t.y as f32, t.z as f32];
-        let mut rotation = [q.x as f32, q.y as f32, q.z as f32, q.w as f32];
+        let translation = finite_f32([t.x, t.y, t.z], what("translation"))?;
+        let mut rotation = finite_f32([q.x, q.y, q.z, q.w], what("rotation"))?;
         let norm = rotation.iter().map(|c| c * c).sum::<f32>().sqrt();
         rotation = rotation.map(|c| c / norm);
         let identity = rotation == [0.0, 0.0, 0.0, 1.0] || !norm.is_normal();

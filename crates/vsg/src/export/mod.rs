@@ -50,6 +50,10 @@ pub enum ExportError {
     BadTree { node: NodeId, why: &'static str },
     #[error("the {kind} mesh is malformed: {why}")]
     BadMesh { kind: &'static str, why: String },
+    #[error(
+        "{what} is not a finite 32-bit float, as glTF and OBJ store numbers: {value:?} (is the model out of bounds?)"
+    )]
+    NotFinite { what: String, value: Vec<f64> },
     #[error("the GLB would be {bytes} bytes, more than the 4 GiB the format allows")]
     TooLarge { bytes: u64 },
     #[error("cannot serialize the glTF JSON: {0}")]
@@ -275,6 +279,24 @@ impl Palette {
             self.used.push(canonical);
         }
         *slot
+    }
+}
+
+/// `v` as the 32-bit floats the files store, or an error naming `what` if any is not finite
+/// there. The second line of defence behind production's bounds (`shape::MAX_COORDINATE`):
+/// a model built by hand must not become `null` in a glTF accessor or `inf` in an OBJ.
+pub(crate) fn finite_f32<const N: usize>(
+    v: [f64; N],
+    what: impl FnOnce() -> String,
+) -> Result<[f32; N], ExportError> {
+    let f = v.map(|c| c as f32);
+    if f.iter().all(|c| c.is_finite()) {
+        Ok(f)
+    } else {
+        Err(ExportError::NotFinite {
+            what: what(),
+            value: v.to_vec(),
+        })
     }
 }
 

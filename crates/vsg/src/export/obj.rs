@@ -9,7 +9,8 @@ use nalgebra::{Point3, Vector3};
 
 use super::shading::{ShadedMesh, shade};
 use super::{
-    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, solid_mesh, unit,
+    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, finite_f32, solid_mesh,
+    unit,
 };
 use crate::tree::{Appearance, Model, NodeId, NodeState};
 
@@ -52,7 +53,10 @@ pub(super) fn write_obj(
         let _ = writeln!(obj, "usemtl appearance_{}", palette.used[slot as usize]);
         for p in &mesh.positions {
             let w = node.world * Point3::from(*p);
-            let _ = writeln!(obj, "v {} {} {}", w.x as f32, w.y as f32, w.z as f32);
+            let [x, y, z] = finite_f32([w.x, w.y, w.z], || {
+                format!("a vertex of {} (node {i})", model.symbol(node))
+            })?;
+            let _ = writeln!(obj, "v {x} {y} {z}");
         }
         for n in &mesh.normals {
             let w = node.world.rotation * Vector3::from(*n);

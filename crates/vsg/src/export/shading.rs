@@ -47,12 +47,13 @@ pub(crate) fn shade(
 ) -> Result<ShadedMesh, ExportError> {
     let n = mesh.positions.len();
     let bad = |why: String| ExportError::BadMesh { kind, why };
+    // Positions are stored as f32: a vertex must be finite there, not only in f64.
     if let Some(p) = mesh
         .positions
         .iter()
-        .find(|p| !p.iter().all(|c| c.is_finite()))
+        .find(|p| !p.iter().all(|&c| (c as f32).is_finite()))
     {
-        return Err(bad(format!("vertex {p:?} is not finite")));
+        return Err(bad(format!("vertex {p:?} is not a finite 32-bit float")));
     }
     if let Some(t) = mesh
         .triangles

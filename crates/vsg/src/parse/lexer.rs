@@ -1,6 +1,7 @@
 //! The lexer: program text to tokens with byte spans. Whitespace (newlines included) and
 //! `// ...` comments between tokens are skipped; bad characters and unterminated strings are
-//! reported and lexing carries on.
+//! reported and lexing carries on. A leading byte-order mark (which Windows editors write) is
+//! nothing: this is the one place every program text, main or imported, goes through.
 
 use std::fmt;
 
@@ -108,17 +109,21 @@ pub fn lexer<'s>() -> impl Parser<'s, &'s str, Vec<Spanned<'s>>, LexErr<'s>> {
     let blank = any().filter(|c: &char| c.is_whitespace()).ignored();
     let skip = comment.or(blank).repeated();
 
-    choice((num, string, word, punct, stray))
-        .map_with(|t, e| (t, e.span()))
-        .padded_by(skip)
-        .repeated()
-        .collect::<Vec<_>>()
-        .then_ignore(skip)
-        .then_ignore(end())
-        .map(|tokens| {
-            tokens
-                .into_iter()
-                .filter(|(t, _)| *t != Token::Error)
-                .collect()
-        })
+    let bom = just('\u{FEFF}').or_not();
+
+    bom.ignore_then(
+        choice((num, string, word, punct, stray))
+            .map_with(|t, e| (t, e.span()))
+            .padded_by(skip)
+            .repeated()
+            .collect::<Vec<_>>(),
+    )
+    .then_ignore(skip)
+    .then_ignore(end())
+    .map(|tokens| {
+        tokens
+            .into_iter()
+            .filter(|(t, _)| *t != Token::Error)
+            .collect()
+    })
 }

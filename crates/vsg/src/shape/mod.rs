@@ -12,10 +12,24 @@ mod wedge;
 use nalgebra::Isometry3;
 use serde::Serialize;
 
+use crate::diag::num;
 use crate::mesh::TriMesh;
 
 /// Relative tolerance for split lengths that must add up to a shape's extent.
 pub const FIT_TOLERANCE: f64 = 1e-6;
+
+/// Largest magnitude, in metres, of any shape size or parameter and of any shape position: the
+/// one bound on a model's geometry. The exporters store 32-bit floats (glTF allows no other),
+/// whose steps are already 1 m at 1e7 m and which overflow at 3.4e38, so larger values can only
+/// be mistakes (`1e308`, `--set w=1e39`); the largest castle is under 1 km, and 1e7 m still
+/// admits georeferenced (UTM) coordinates. With sizes and positions within it, every mesh
+/// vertex lies within a few times 1e7 m of the origin, far inside f32.
+pub const MAX_COORDINATE: f64 = 1e7;
+
+/// Whether `v` is a finite number within [`MAX_COORDINATE`] of zero.
+pub fn within_bounds(v: f64) -> bool {
+    v.abs() <= MAX_COORDINATE
+}
 
 /// The shape types of Table 7.1 (the unique shape of §7.1.2 is not a primitive).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
@@ -265,7 +279,7 @@ pub enum ShapeError {
         names: String,
         found: usize,
     },
-    #[error("{kind} parameter {name} = {value} is invalid: {why}")]
+    #[error("{kind} parameter {name} = {} is invalid: {why}", num(*.value))]
     BadParam {
         kind: ShapeType,
         name: &'static str,
@@ -278,16 +292,36 @@ pub enum ShapeError {
         axis: Axis,
         allowed: String,
     },
-    #[error("split length #{index} is {value}; lengths must be finite and positive")]
+    #[error("split length #{index} is {}; lengths must be finite and positive", num(*.value))]
     BadLength { index: usize, value: f64 },
     #[error(
-        "split lengths along {axis} add up to {sum}, but the {kind} measures {extent} along {axis}"
+        "split lengths along {axis} add up to {}, but the {kind} measures {} along {axis}",
+        num(*.sum),
+        num(*.extent)
     )]
     LengthsDontFit {
         kind: ShapeType,
         axis: Axis,
         sum: f64,
         extent: f64,
+    },
+    #[error(
+        "{kind} parameter {name} = {value:e} is larger than the {max:e} m a model may span (shapes are stored as 32-bit floats)",
+        max = MAX_COORDINATE
+    )]
+    ParamTooLarge {
+        kind: ShapeType,
+        name: &'static str,
+        value: f64,
+    },
+    #[error(
+        "{kind} would measure {size:e} m along {axis}, more than the {max:e} m a model may span (shapes are stored as 32-bit floats)",
+        max = MAX_COORDINATE
+    )]
+    TooLarge {
+        kind: ShapeType,
+        axis: Axis,
+        size: f64,
     },
     #[error("{0}")]
     Unsupported(String),
@@ -321,9 +355,13 @@ impl Default for Tessellation {
 }
 
 impl Tessellation {
+    /// Most segments around a full circle (the binary's `--segments` bound): a library caller's
+    /// `u32::MAX` would otherwise ask for meshes of billions of triangles.
+    pub const MAX_SEGMENTS: u32 = 4096;
+
     /// Segments for an arc of `angle` radians.
     pub fn arc_segments(&self, angle: f64) -> u32 {
-        let full = self.segments.max(3) as f64;
+        let full = self.segments.clamp(3, Self::MAX_SEGMENTS) as f64;
         ((full * angle / std::f64::consts::TAU).ceil() as u32).max(1)
     }
 }
@@ -360,6 +398,13 @@ impl Primitive {
                     why: "not a finite number".into(),
                 });
             }
+            if !within_bounds(v) {
+                return Err(ShapeError::ParamTooLarge {
+                    kind,
+                    name: names[i],
+                    value: v,
+                });
+            }
         }
         let p = Primitive { kind, params: all };
         match kind.family() {
@@ -367,6 +412,12 @@ impl Primitive {
             Family::Revolved => revolved::validate(&p)?,
             Family::Wedge => wedge::validate(&p)?,
             Family::Spherical => spherical::validate(&p)?,
+        }
+        // Parameters within bounds can still add up (a parallelepiped's offsets).
+        for (axis, size) in [Axis::X, Axis::Y, Axis::Z].into_iter().zip(p.size()) {
+            if !within_bounds(size) {
+                return Err(ShapeError::TooLarge { kind, axis, size });
+            }
         }
         Ok(p)
     }
