@@ -116,6 +116,7 @@ pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options)
         ProgressStyle::with_template("{bar:40} {pos}/{len} drawings, {elapsed} ({eta} left)")
             .expect("the progress template is a constant"),
     );
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
     let rows: Vec<Row> = entries
         .par_iter()
         .zip(&stems)

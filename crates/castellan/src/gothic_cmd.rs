@@ -34,14 +34,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         .map(|t| read_training(t, &img))
         .transpose()?;
     let started = Instant::now();
-    let bar = indicatif::ProgressBar::new(1);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
-    // Ticks on its own so the elapsed time moves while one slow shape is being fitted.
-    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+    let bar = crate::progress::bar(1);
     let show = |p: facade::gothic::Progress| match p {
         facade::gothic::Progress::Edges => bar.set_message("edges (§4.2)"),
         facade::gothic::Progress::Detecting { done, total } => {

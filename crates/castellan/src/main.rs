@@ -12,6 +12,7 @@ mod gothic_cmd;
 mod images;
 mod output;
 mod plan_cmd;
+mod progress;
 mod reconstruct_cmd;
 mod rectify_cmd;
 mod report;

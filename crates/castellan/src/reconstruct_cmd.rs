@@ -69,16 +69,6 @@ pub fn print_summary(s: &Summary) {
     );
 }
 
-fn progress(steps: u64) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(steps);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
-    bar
-}
-
 /// Runs the whole pipeline and writes OUTDIR.
 pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Result<Summary> {
     let name = project_path.display().to_string();
@@ -86,7 +76,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
     let dir = project_path.parent().unwrap_or(Path::new("")).to_path_buf();
     let seed = seed.or(project.seed).unwrap_or(0);
-    let bar = progress(4 + (project.facades.len() + project.gothics.len()) as u64);
+    let bar = crate::progress::bar(4 + (project.facades.len() + project.gothics.len()) as u64);
     let mut stages: Vec<(String, f64)> = Vec::new();
     let mut outputs = Outputs::folder(outdir);
 

@@ -177,7 +177,13 @@ async fn oversized_and_non_image_uploads_are_refused_with_clear_errors() {
     assert!(e["error"].as_str().unwrap().contains("limit"), "{e}");
     let (s, e) = upload(&app, "plan", "plan.png", b"#!/bin/sh\necho not a picture\n").await;
     assert_eq!(s, StatusCode::UNSUPPORTED_MEDIA_TYPE);
-    assert!(e["error"].as_str().unwrap().contains("not a readable image"), "{e}");
+    assert!(
+        e["error"]
+            .as_str()
+            .unwrap()
+            .contains("not a readable image"),
+        "{e}"
+    );
     // A PNG signature with a broken body is caught by decoding, not by the name.
     let mut broken = png_bytes(8, 8);
     broken.truncate(40);
