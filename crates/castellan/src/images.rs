@@ -22,26 +22,17 @@ pub const MAX_FILE_BYTES: u64 = 512 << 20;
 /// Reads any supported image (PNG, JPEG, PNM), naming the file in every error.
 pub fn read_image(path: &Path) -> Result<image::DynamicImage> {
     let name = path.display().to_string();
-    let bytes = read_bounded(path)?;
-    Ok(decode(&bytes, &name)?.0)
+    Ok(decode(&read_file(path)?, &name)?.0)
 }
 
-/// The file's bytes, refusing files over [`MAX_FILE_BYTES`] (and endless ones like /dev/zero).
-fn read_bounded(path: &Path) -> Result<Vec<u8>> {
-    use std::io::Read;
-    let name = path.display();
-    let file = std::fs::File::open(path).with_context(|| format!("cannot read {name}"))?;
-    let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .with_context(|| format!("cannot read {name}"))?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(anyhow!(
-            "{name}: larger than {} MiB, the largest image file castellan reads",
-            MAX_FILE_BYTES >> 20
-        ));
-    }
-    Ok(bytes)
+/// An image file's bytes, undecoded, refusing files over [`MAX_FILE_BYTES`] (and endless ones
+/// like /dev/zero).
+pub fn read_file(path: &Path) -> Result<Vec<u8>> {
+    crate::text::read_bounded(
+        path,
+        MAX_FILE_BYTES,
+        "the largest image file castellan reads",
+    )
 }
 
 /// Decodes image bytes (`name` names them in errors) within the pixel budget, returning the
@@ -71,16 +62,39 @@ pub fn decode(bytes: &[u8], name: &str) -> Result<(image::DynamicImage, image::I
     Ok((img, format))
 }
 
-/// Refuses a `w` × `h` image over the pixel budget or [`MAX_SIDE`].
-pub fn check_budget(w: u32, h: u32, name: &str) -> Result<()> {
-    let pixels = u64::from(w) * u64::from(h);
-    if pixels > PIXEL_BUDGET || w > MAX_SIDE || h > MAX_SIDE {
-        return Err(anyhow!(
+/// An image over the pixel budget: its own error type, so that `serve` can answer it apart
+/// from an image that does not decode (413, not 415) without reading the header twice.
+#[derive(Debug)]
+pub struct OverBudget {
+    name: String,
+    width: u32,
+    height: u32,
+}
+
+impl std::fmt::Display for OverBudget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (name, w, h) = (&self.name, self.width, self.height);
+        write!(
+            f,
             "{name}: {w} × {h} pixels ({:.1} Mpx) is over castellan's pixel budget of {} Mpx \
              (at most {MAX_SIDE} px a side); scale the image down first",
-            pixels as f64 / 1e6,
+            (u64::from(w) * u64::from(h)) as f64 / 1e6,
             PIXEL_BUDGET / 1_000_000
-        ));
+        )
+    }
+}
+
+impl std::error::Error for OverBudget {}
+
+/// Refuses a `w` × `h` image over the pixel budget or [`MAX_SIDE`].
+pub fn check_budget(w: u32, h: u32, name: &str) -> Result<(), OverBudget> {
+    let pixels = u64::from(w) * u64::from(h);
+    if pixels > PIXEL_BUDGET || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(OverBudget {
+            name: name.to_string(),
+            width: w,
+            height: h,
+        });
     }
     Ok(())
 }

@@ -1,7 +1,8 @@
-//! Text inputs for every command (PROJECT.toml, TRAINING.json, LINES.json, VSG programs): a
-//! bounded read, so `/dev/zero` or a runaway file is refused instead of filling memory, and
-//! UTF-8 checked with the line:column of the first bad byte. A leading byte-order mark, which
-//! Windows editors write, is dropped rather than reported as an invisible character.
+//! Inputs read from files: one bounded read for every input, text or image (`read_bounded`), so
+//! `/dev/zero` or a runaway file is refused instead of filling memory; and text inputs
+//! (PROJECT.toml, TRAINING.json, LINES.json, VSG programs) as UTF-8 checked with the
+//! line:column of the first bad byte. A leading byte-order mark, which Windows editors write,
+//! is dropped rather than reported as an invisible character.
 
 use std::io::Read;
 use std::path::Path;
@@ -19,6 +20,18 @@ pub fn read_text(path: &Path) -> Result<String> {
 
 /// [`read_text`] with an explicit limit (tests).
 pub fn read_text_limited(path: &Path, limit: u64) -> Result<String> {
+    let bytes = read_bounded(
+        path,
+        limit,
+        "the most castellan reads as text (is it the right file?)",
+    )?;
+    decode(&bytes).map_err(|e| anyhow!("{}:{e}", path.display()))
+}
+
+/// The bytes of any input file (text or image) of at most `limit` bytes: a longer or endless
+/// one (`/dev/zero`) is refused after `limit + 1` bytes, saying it is larger than `limit`,
+/// `the_most` (what the limit is).
+pub fn read_bounded(path: &Path, limit: u64, the_most: &str) -> Result<Vec<u8>> {
     let name = path.display();
     let file = std::fs::File::open(path).map_err(|e| anyhow!("cannot read {name}: {e}"))?;
     if file.metadata().is_ok_and(|m| m.is_dir()) {
@@ -30,11 +43,11 @@ pub fn read_text_limited(path: &Path, limit: u64) -> Result<String> {
         .map_err(|e| anyhow!("cannot read {name}: {e}"))?;
     if bytes.len() as u64 > limit {
         return Err(anyhow!(
-            "{name}: larger than {} MiB, the most castellan reads as text (is it the right file?)",
+            "{name}: larger than {} MiB, {the_most}",
             limit >> 20
         ));
     }
-    decode(&bytes).map_err(|e| anyhow!("{name}:{e}"))
+    Ok(bytes)
 }
 
 /// A JSON file (`what` names the format, as "a TRAINING.json"), with errors at `file:line:col`.

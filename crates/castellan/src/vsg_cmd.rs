@@ -119,11 +119,11 @@ fn read_textures(model: &vsg::Model, program: &Path) -> Result<vsg::export::Text
 
 /// One texture file, checked to decode, as PNG or JPEG bytes.
 fn read_texture(path: &Path) -> Result<vsg::export::TextureImage> {
-    let decoded = crate::images::read_image(path)?;
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let (bytes, mime_type) = match image::guess_format(&bytes) {
-        Ok(image::ImageFormat::Png) => (bytes, "image/png"),
-        Ok(image::ImageFormat::Jpeg) => (bytes, "image/jpeg"),
+    let bytes = crate::images::read_file(path)?;
+    let (decoded, format) = crate::images::decode(&bytes, &path.display().to_string())?;
+    let (bytes, mime_type) = match format {
+        image::ImageFormat::Png => (bytes, "image/png"),
+        image::ImageFormat::Jpeg => (bytes, "image/jpeg"),
         _ => (crate::images::png(&decoded.to_rgba8(), path)?, "image/png"),
     };
     Ok(vsg::export::TextureImage {

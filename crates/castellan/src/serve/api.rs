@@ -345,17 +345,14 @@ fn multipart_error(app: &App, e: axum::extract::multipart::MultipartError) -> Ap
 /// checked from the header before any pixel is decoded) to prove it is an image. An image over
 /// the budget is 413, anything that does not decode 415.
 fn check_image(name: &str, bytes: &[u8]) -> Result<(image::ImageFormat, u32, u32), ApiError> {
-    let header = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .ok()
-        .and_then(|r| r.into_dimensions().ok());
-    if let Some((w, h)) = header
-        && let Err(e) = crate::images::check_budget(w, h, name)
-    {
-        return Err(ApiError(StatusCode::PAYLOAD_TOO_LARGE, format!("{e:#}")));
-    }
-    let (img, format) = crate::images::decode(bytes, name)
-        .map_err(|e| ApiError(StatusCode::UNSUPPORTED_MEDIA_TYPE, format!("{e:#}")))?;
+    let (img, format) = crate::images::decode(bytes, name).map_err(|e| {
+        let status = if e.is::<crate::images::OverBudget>() {
+            StatusCode::PAYLOAD_TOO_LARGE
+        } else {
+            StatusCode::UNSUPPORTED_MEDIA_TYPE
+        };
+        ApiError(status, format!("{e:#}"))
+    })?;
     Ok((format, img.width(), img.height()))
 }
 
