@@ -50,10 +50,8 @@ impl Store {
             return Ok(None);
         }
         let text = crate::text::read_text(&path)?;
-        let project: Project = toml::from_str(&text).map_err(|e| {
-            let (line, col) = line_col(&text, e.span().map_or(0, |s| s.start));
-            anyhow!("{}:{line}:{col}: {}", path.display(), e.message())
-        })?;
+        let project =
+            Project::parse_unchecked(&text).map_err(|e| anyhow!("{}:{e}", path.display()))?;
         check_in_progress(&project).map_err(|e| anyhow!("{}:{e}", path.display()))?;
         Ok(Some(project))
     }
@@ -196,18 +194,6 @@ fn check_in_progress(p: &Project) -> Result<(), integrate::project::ProjectError
     }
     complete.facades.retain(|f| mapped(&f.image));
     Project::from_toml(&complete.to_toml()).map(|_| ())
-}
-
-/// Line and column (from 1, columns in characters) of byte `offset` of `text`.
-pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let mut end = offset.min(text.len());
-    while !text.is_char_boundary(end) {
-        end -= 1;
-    }
-    let before = &text[..end];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
-    (line, col)
 }
 
 /// `p` written over the user's PROJECT.toml `old`: values that did not change keep their text,
