@@ -128,11 +128,6 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
                 TrainingSource::File(p) => crate::text::read_json(&dir.join(p), "a TRAINING.json")
                     .with_context(|| at.clone())?,
             };
-            // The boxes are checked in the photo's own pixels, before they are mapped into the
-            // rectified façade (which reorders corners and would hide an inverted box).
-            training
-                .boxes(image.width() as usize, image.height() as usize)
-                .map_err(|e| anyhow!("{at}: training: {e}"))?;
             Ok((image, training, lines))
         })
         .collect::<Result<_>>()?;

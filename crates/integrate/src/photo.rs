@@ -91,6 +91,13 @@ pub fn rectify_photo(
 /// Runs §3.1.1–3.1.7 on one photo.
 pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateError> {
     let err = |step, e| IntegrateError::facade(photo.name, step, e);
+    // Checked in the photo's own pixels: mapping into the rectified façade orders each box's
+    // corners, which would hide an inverted box (issue 19).
+    let (w, h) = photo.image.dimensions();
+    photo
+        .training
+        .validate(w as usize, h as usize)
+        .map_err(|e| err("training boxes", e))?;
     let Rectified {
         rectification,
         homography,
