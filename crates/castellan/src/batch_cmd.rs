@@ -84,21 +84,27 @@ fn list_entries(dir: &Path) -> Result<Vec<(PathBuf, Option<String>)>> {
 /// files share a stem (`same.png` and `same.jpg` give `same.png.plan.json` and
 /// `same.jpg.plan.json` rather than overwriting each other).
 fn output_stems(files: &[&Path]) -> Vec<String> {
-    let stem = |p: &Path| {
-        p.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    };
-    let name = |p: &Path| {
-        p.file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    };
-    files
+    let stems: Vec<String> = files
         .iter()
         .map(|p| {
-            let shared = files.iter().filter(|q| stem(q) == stem(p)).count() > 1;
-            if shared { name(p) } else { stem(p) }
+            p.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        })
+        .collect();
+    let mut count: std::collections::HashMap<&str, usize> = Default::default();
+    for s in &stems {
+        *count.entry(s).or_default() += 1;
+    }
+    files
+        .iter()
+        .zip(&stems)
+        .map(|(p, s)| {
+            if count[s.as_str()] > 1 {
+                file_name(p)
+            } else {
+                s.clone()
+            }
         })
         .collect()
 }

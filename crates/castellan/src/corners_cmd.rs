@@ -28,10 +28,10 @@ pub fn run(args: &CornersArgs) -> Result<()> {
     let gray = read_gray(&args.image)?;
     let params = args.detector.params();
     let started = Instant::now();
-    let spinner = crate::progress::spinner("structural corners (ch. 2)");
-    let found = corners::detect(&gray, &params).map_err(|e| anyhow!("{file}: {e}"));
-    spinner.finish_and_clear();
-    let found = found?;
+    let found = crate::progress::with_spinner("structural corners (ch. 2)", |_| {
+        corners::detect(&gray, &params)
+    })
+    .map_err(|e| anyhow!("{file}: {e}"))?;
     let took = started.elapsed();
     let mut outputs = Outputs::default();
     outputs.add(&args.output, serde_json::to_vec_pretty(&found)?);

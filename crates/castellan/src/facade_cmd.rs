@@ -27,15 +27,12 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         },
         ..Default::default()
     };
-    let spinner = crate::progress::spinner("pixel classes (§3.1.2–3.1.4)");
-    let model = classify::classify(&img, &training, &params)
-        .map_err(|e| anyhow!("{file}: {e}"))
-        .and_then(|ll| {
-            spinner.set_message("façades, floors and windows (§3.1.5–3.1.7)");
-            search::parse(&img, &ll, &SearchParams::default()).map_err(|e| anyhow!("{file}: {e}"))
-        });
-    spinner.finish_and_clear();
-    let model = model?;
+    let model = crate::progress::with_spinner("pixel classes (§3.1.2–3.1.4)", |spinner| {
+        let ll = classify::classify(&img, &training, &params)?;
+        spinner.set_message("façades, floors and windows (§3.1.5–3.1.7)");
+        search::parse(&img, &ll, &SearchParams::default())
+    })
+    .map_err(|e| anyhow!("{file}: {e}"))?;
     let labels = model.labels();
     let mut outputs = Outputs::default();
     outputs.add(&args.output, serde_json::to_vec_pretty(&model)?);

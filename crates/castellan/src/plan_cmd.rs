@@ -33,10 +33,10 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     let file = image.display().to_string();
     let img = crate::images::read_image(image)?;
     let started = Instant::now();
-    let spinner = crate::progress::spinner("parsing the plan drawing (ch. 5)");
-    let parsed = plan::parse(&img, &options).map_err(|e| anyhow!("{file}: {e}"));
-    spinner.finish_and_clear();
-    let parsed = parsed?;
+    let parsed = crate::progress::with_spinner("parsing the plan drawing (ch. 5)", |_| {
+        plan::parse(&img, &options)
+    })
+    .map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
     let scale = match args.scale_bar {
         None => args.scale,

@@ -20,8 +20,9 @@ pub fn bar(steps: u64) -> ProgressBar {
     bar
 }
 
-/// A spinner for one step: `what` names it (with its section).
-pub fn spinner(what: &str) -> ProgressBar {
+/// Runs `work` under a spinner named `what` (with its section), cleared when it ends however it
+/// ends; `work` may rename the step on the spinner it is given.
+pub fn with_spinner<T>(what: &str, work: impl FnOnce(&ProgressBar) -> T) -> T {
     let s = ProgressBar::new_spinner();
     s.set_style(
         ProgressStyle::with_template("{elapsed:>4} {spinner} {msg}")
@@ -29,5 +30,7 @@ pub fn spinner(what: &str) -> ProgressBar {
     );
     s.set_message(what.to_string());
     s.enable_steady_tick(TICK);
-    s
+    let result = work(&s);
+    s.finish_and_clear();
+    result
 }

@@ -31,12 +31,10 @@ pub fn run(args: &RectifyArgs) -> Result<()> {
             rectify::rectify_with_lines(img.width(), img.height(), &lines, &params)
                 .map_err(|e| anyhow!("{}: {e}", lines_path.display()))?
         }
-        None => {
-            let spinner = crate::progress::spinner("lines and vanishing points (§3.1.1)");
-            let r = rectify::rectify(&img, &params).map_err(|e| anyhow!("{file}: {e}"));
-            spinner.finish_and_clear();
-            r?
-        }
+        None => crate::progress::with_spinner("lines and vanishing points (§3.1.1)", |_| {
+            rectify::rectify(&img, &params)
+        })
+        .map_err(|e| anyhow!("{file}: {e}"))?,
     };
     let warped = r.warp(&img).map_err(|e| anyhow!("{file}: {e}"))?;
     let mut outputs = Outputs::default();

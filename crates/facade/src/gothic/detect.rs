@@ -145,8 +145,17 @@ pub fn starts(dt: &DistanceMap, seeds: &[Seed]) -> Vec<Theta> {
 
 /// Maximises from every start and keeps the significant, plausible results.
 pub fn detect(dt: &DistanceMap, params: &GothicParams) -> Vec<Candidate> {
+    detect_with(dt, params, &|_| {})
+}
+
+/// [`detect`], telling `progress` after each start.
+pub fn detect_with(
+    dt: &DistanceMap,
+    params: &GothicParams,
+    progress: &(dyn Fn(super::Progress) + Sync),
+) -> Vec<Candidate> {
     let seeds = seeds(dt, params.min_seed_radius, params.max_seeds);
-    detect_from_starts(dt, &starts(dt, &seeds), params)
+    detect_from_starts_with(dt, &starts(dt, &seeds), params, progress)
 }
 
 /// [`detect`] from given first shapes (the class-driven mode seeds one per window blob and

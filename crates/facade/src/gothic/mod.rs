@@ -240,9 +240,7 @@ pub fn estimate_with_progress(
     check_size(img)?;
     progress(Progress::Edges);
     let dt = distance_map(img, params);
-    let seeds = detect::seeds(&dt, params.min_seed_radius, params.max_seeds);
-    let found =
-        detect::detect_from_starts_with(&dt, &detect::starts(&dt, &seeds), params, progress);
+    let found = detect::detect_with(&dt, params, progress);
     Ok(organise_with_progress(&dt, found, params, progress))
 }
 
