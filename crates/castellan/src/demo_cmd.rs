@@ -114,7 +114,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     }
     outputs.commit()?;
     let summary =
-        crate::reconstruct_cmd::reconstruct(&project_dir.join("PROJECT.toml"), &args.output, None)?;
+        crate::reconstruction::reconstruct(&project_dir.join("PROJECT.toml"), &args.output, None)?;
     let truth_bytes = files
         .iter()
         .find(|(n, _)| *n == "TRUTH.json")
@@ -129,7 +129,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     for line in lines {
         eprintln!("{line}");
     }
-    crate::reconstruct_cmd::print_summary(&summary);
+    crate::reconstruction::print_summary(&summary);
     Ok(())
 }
 
@@ -230,7 +230,7 @@ fn compare(structures: &[Structure], truth: &serde_json::Value) -> Result<Vec<St
     ));
     let towers: Vec<&Structure> = structures
         .iter()
-        .filter(|s| s.label == "tower_room")
+        .filter(|s| s.label == plan::label::Label::TowerRoom)
         .collect();
     let truth_towers = truth["towers"].as_array().cloned().unwrap_or_default();
     lines.push(format!(

@@ -14,6 +14,7 @@ mod output;
 mod plan_cmd;
 mod progress;
 mod reconstruct_cmd;
+mod reconstruction;
 mod rectify_cmd;
 mod report;
 mod serve;

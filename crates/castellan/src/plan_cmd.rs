@@ -38,20 +38,14 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     })
     .map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
-    let scale = match args.scale_bar {
-        None => args.scale,
-        Some(metres) => Some(
-            scale_from_bar(&parsed, metres, &format!("{file}: scale bar")).ok_or_else(|| {
-                anyhow!(
-                    "{file}: no drawn scale bar found ({}); give --scale METRES_PER_PIXEL instead",
-                    plan::scalebar::LOOKED_FOR
-                )
-            })?,
-        ),
-    };
+    let given = plan::scale::GivenScale::from_options(args.scale, args.scale_bar);
+    let (model_scale, note) = plan::scale::ModelScale::decide(&parsed, given)
+        .map_err(|e| anyhow!("{file}: {e}; give --scale METRES_PER_PIXEL instead"))?;
+    let metres_per_pixel =
+        (model_scale.units == plan::scale::Units::Metres).then_some(model_scale.units_per_pixel);
 
     let mut outputs = Outputs::default();
-    let doc = plan::output::plan_json(&parsed, scale);
+    let doc = plan::output::plan_json(&parsed, metres_per_pixel);
     outputs.add(&args.output, serde_json::to_vec_pretty(&doc)?);
     if let Some(path) = &args.labels {
         outputs.add(path, png(&plan::output::labels_image(&parsed), path)?);
@@ -64,15 +58,11 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         outputs.add(path, plan::output::svg(&parsed).into_bytes());
     }
     if let Some(path) = &args.model {
-        // Without a scale, heights are in pixels: 1 m taken as 1/100 of the castle's size.
-        let (scale, heights) = match scale {
-            Some(s) => (s, plan::extrude::Heights::metres()),
-            None => {
-                let size = f64::from(parsed.width.max(parsed.height));
-                (1.0, plan::extrude::Heights::scaled(size / 100.0))
-            }
-        };
-        let src = plan::extrude::to_vsg(&parsed, scale, &heights);
+        let src = plan::extrude::to_vsg(
+            &parsed,
+            model_scale.units_per_pixel,
+            &plan::extrude::Heights::scaled(model_scale.units_per_metre),
+        );
         let model = vsg::run(&src, &vsg::RunOptions::default()).map_err(|e| {
             anyhow!(
                 "{}: internal error in the extrusion program: {}",
@@ -100,6 +90,14 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     );
     for w in &parsed.warnings {
         eprintln!("{file}: warning: {w}");
+    }
+    match note {
+        plan::scale::ScaleNote::Given => {}
+        plan::scale::ScaleNote::Bar(how) => eprintln!("{file}: {how}"),
+        plan::scale::ScaleNote::Assumed(how) if args.model.is_some() => {
+            eprintln!("{file}: model in plan pixels; {how}")
+        }
+        plan::scale::ScaleNote::Assumed(_) => {}
     }
     Ok(())
 }
@@ -162,18 +160,6 @@ pub struct PlanArgs {
     pub no_inner_towers: bool,
 }
 
-/// Metres per pixel from the bar drawn on the plan, said to be `metres` long; prints `label`
-/// and where the bar is, so the user can check it. `None` when the finder sees no bar.
-pub(crate) fn scale_from_bar(parsed: &plan::ParsedPlan, metres: f64, label: &str) -> Option<f64> {
-    let bar = parsed.scale_bar?;
-    let s = bar.scale(metres);
-    eprintln!(
-        "{label} {} = {metres} m: {s:.4} m per pixel",
-        bar.describe()
-    );
-    Some(s)
-}
-
 fn parse_fraction(s: &str) -> Result<f64, String> {
     let v: f64 = s
         .trim()
@@ -186,11 +172,19 @@ fn parse_fraction(s: &str) -> Result<f64, String> {
 }
 
 fn parse_scale(s: &str) -> Result<f64, String> {
-    parse_in(s, &plan::METRES_PER_PIXEL, "scale in metres per pixel")
+    parse_in(
+        s,
+        &plan::scale::METRES_PER_PIXEL,
+        "scale in metres per pixel",
+    )
 }
 
 fn parse_bar_metres(s: &str) -> Result<f64, String> {
-    parse_in(s, &plan::SCALE_BAR_METRES, "scale-bar length in metres")
+    parse_in(
+        s,
+        &plan::scale::SCALE_BAR_METRES,
+        "scale-bar length in metres",
+    )
 }
 
 fn parse_in(s: &str, range: &std::ops::RangeInclusive<f64>, unit: &str) -> Result<f64, String> {
@@ -198,7 +192,7 @@ fn parse_in(s: &str, range: &std::ops::RangeInclusive<f64>, unit: &str) -> Resul
         .trim()
         .parse()
         .map_err(|_| format!("'{s}' is not a number"))?;
-    plan::check_range(v, range, unit)?;
+    plan::scale::check_range(v, range, unit)?;
     Ok(v)
 }
 

@@ -44,7 +44,7 @@ pub fn html(
     project: &Project,
     e: &Estimate,
     stats: &serde_json::Value,
-    stages: &[(String, f64)],
+    stages: &[(integrate::pipeline::Stage, f64)],
     glb: &[u8],
 ) -> String {
     let mut h = String::new();
@@ -58,8 +58,8 @@ pub fn html(
         esc(&project.plan),
         project.facades.len(),
         project.gothics.len(),
-        esc(&e.units),
-        e.scale
+        e.scale.units.symbol(),
+        e.scale.units_per_pixel
     );
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
@@ -83,7 +83,7 @@ pub fn html(
         "<h2>Steps</h2><figure><img src=\"overlays/plan_labels.png\"><figcaption>Plan labels (ch. 5)</figcaption></figure>"
     );
     for f in &project.facades {
-        let stem = crate::reconstruct_cmd::stem(&f.image);
+        let stem = integrate::textures::safe_stem(&f.image);
         if !f.rectified {
             let _ = writeln!(
                 h,
@@ -100,7 +100,7 @@ pub fn html(
         );
     }
     for g in &project.gothics {
-        let stem = crate::reconstruct_cmd::stem(&g.image);
+        let stem = integrate::textures::safe_stem(&g.image);
         if !g.rectified {
             let _ = writeln!(
                 h,
@@ -184,7 +184,7 @@ pub fn html(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
             esc(&s.id),
-            esc(&s.label),
+            s.label.name(),
             fp,
             s.height,
             facades.join("<br>"),
@@ -193,7 +193,7 @@ pub fn html(
     }
     let _ = writeln!(h, "</table><h2>Time per stage</h2><table>");
     for (k, v) in stages {
-        let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", esc(k));
+        let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", k.name());
     }
     let _ = writeln!(h, "</table></body></html>");
     h

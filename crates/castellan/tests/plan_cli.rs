@@ -226,3 +226,74 @@ fn scale_bar_gives_metres_per_pixel_and_its_absence_is_an_error() {
     );
     assert!(!json2.exists());
 }
+
+/// Issue 20: without a scale, `plan --model` and `reconstruct` took a metre differently (1/100
+/// of the drawing against the outer walls' thickness as 2.5 m). One rule now decides it
+/// (`plan::scale::ModelScale::decide`); both commands report it and use it.
+#[test]
+fn plan_model_and_reconstruct_take_the_same_metre_without_a_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawing =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plans/sully-sur-loire.png");
+    std::fs::copy(&drawing, dir.path().join("plan.png")).unwrap();
+    let plan = castellan()
+        .arg("plan")
+        .arg(dir.path().join("plan.png"))
+        .arg("-o")
+        .arg(dir.path().join("plan.json"))
+        .arg("--model")
+        .arg(dir.path().join("model.glb"))
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&plan.get_output().stderr).into_owned();
+    let said = stderr
+        .lines()
+        .find(|l| l.contains("model in plan pixels"))
+        .unwrap_or_else(|| panic!("the assumption is reported: {stderr}"));
+    let per_metre: f64 = said
+        .rsplit("1 m = ")
+        .next()
+        .and_then(|s| s.trim_end_matches(" px").parse().ok())
+        .unwrap_or_else(|| panic!("a metre in pixels: {said}"));
+
+    std::fs::write(dir.path().join("PROJECT.toml"), "plan = \"plan.png\"\n").unwrap();
+    castellan()
+        .arg("reconstruct")
+        .arg(dir.path().join("PROJECT.toml"))
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .success();
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("out/estimate.json")).unwrap())
+            .unwrap();
+    assert_eq!(estimate["units"], "px");
+    let upm = estimate["units_per_metre"].as_f64().unwrap();
+    assert!(
+        (upm - per_metre).abs() < 0.005,
+        "plan --model: 1 m = {per_metre} px; reconstruct: {upm}"
+    );
+    assert!(
+        estimate["assumptions"][0]
+            .as_str()
+            .unwrap()
+            .contains(said.split("model in plan pixels; ").nth(1).unwrap()),
+        "{estimate}"
+    );
+    // The model's tallest walls are the §5.3 tower walls, 20 m in plan pixels.
+    let glb = std::fs::read(dir.path().join("model.glb")).unwrap();
+    let gltf = gltf_json_chunk(&glb);
+    let top = gltf["accessors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|a| a["max"].as_array().map(|m| m[1].as_f64().unwrap()))
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(top <= 20.0 * upm * 1.001, "top {top} vs 20 m = {}", 20.0 * upm);
+}
+
+/// The JSON chunk of a binary glTF.
+fn gltf_json_chunk(glb: &[u8]) -> serde_json::Value {
+    let len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&glb[20..20 + len]).unwrap()
+}

@@ -252,6 +252,6 @@ fn an_inverted_training_box_in_a_photo_is_refused() {
                 1,
             )
         },
-        "[[facade]] image = \"keep_south_far.png\": keep_south_far.png: training boxes: bad training data: wall box 0 [50.0, 50.0, 10.0, 10.0] is inverted",
+        "[[facade]] #2 (image = \"keep_south_far.png\"): keep_south_far.png: training boxes: bad training data: wall box 0 [50.0, 50.0, 10.0, 10.0] is inverted",
     );
 }

@@ -43,6 +43,7 @@
 //! Everything is pure: images in, typed results out; randomness flows from explicit seeds.
 
 pub mod classify;
+pub mod draw;
 pub mod error;
 pub mod eval;
 pub mod gothic;

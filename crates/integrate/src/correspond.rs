@@ -7,13 +7,13 @@ use std::f64::consts::{PI, TAU};
 
 use facade::model::FacadeModel;
 
-use crate::estimate::{Footprint, Structure};
+use crate::estimate::{Footprint, Side, Structure};
 
 /// Where on a structure a façade goes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Placement {
     /// `north`, `south`, `east` or `west`, and that side's length (model units).
-    Side { side: &'static str, length: f64 },
+    Side { side: Side, length: f64 },
     /// Start and end angle (counter-clockwise on the drawing, 0 = +x) and the diameter.
     Arc { start: f64, end: f64, diameter: f64 },
 }
@@ -81,10 +81,10 @@ pub fn place(footprint: &Footprint, points: &[[f64; 2]]) -> Placement {
             let (u, v) = local(*center, *rotation, points[0]);
             let (a, b) = (size[0] / 2.0, size[1] / 2.0);
             let sides = [
-                ("north", (v + b).abs(), size[0]),
-                ("south", (v - b).abs(), size[0]),
-                ("east", (u - a).abs(), size[1]),
-                ("west", (u + a).abs(), size[1]),
+                (Side::North, (v + b).abs(), size[0]),
+                (Side::South, (v - b).abs(), size[0]),
+                (Side::East, (u - a).abs(), size[1]),
+                (Side::West, (u + a).abs(), size[1]),
             ];
             let (side, _, length) = sides
                 .into_iter()
@@ -146,10 +146,10 @@ mod tests {
             other => panic!("{other:?}"),
         };
         // Image y is down: north is the top edge (smaller y).
-        assert_eq!(side([100.0, 42.0]), ("north", 40.0));
-        assert_eq!(side([100.0, 58.0]), ("south", 40.0));
-        assert_eq!(side([118.0, 50.0]), ("east", 20.0));
-        assert_eq!(side([82.0, 50.0]), ("west", 20.0));
+        assert_eq!(side([100.0, 42.0]), (Side::North, 40.0));
+        assert_eq!(side([100.0, 58.0]), (Side::South, 40.0));
+        assert_eq!(side([118.0, 50.0]), (Side::East, 20.0));
+        assert_eq!(side([82.0, 50.0]), (Side::West, 20.0));
     }
 
     #[test]
@@ -164,7 +164,7 @@ mod tests {
         assert_eq!(
             place(&f, &[[0.0, 18.0]]),
             Placement::Side {
-                side: "east",
+                side: Side::East,
                 length: 20.0
             }
         );
@@ -199,7 +199,7 @@ mod tests {
         use crate::estimate::Kind;
         let mk = |footprint| Structure {
             id: String::new(),
-            label: String::new(),
+            label: plan::label::Label::UnknownRoom,
             kind: Kind::Solid,
             footprint,
             height: 1.0,
@@ -222,7 +222,7 @@ mod tests {
         use crate::estimate::Kind;
         let segment = Structure {
             id: "wall1".into(),
-            label: "castle_outer_wall".into(),
+            label: plan::label::Label::CastleOuterWall,
             kind: Kind::Solid,
             footprint: Footprint::Rectangle {
                 center: [0.0, 0.0],
@@ -237,7 +237,7 @@ mod tests {
         };
         let tower = Structure {
             id: "tower1".into(),
-            label: "tower_wall".into(),
+            label: plan::label::Label::TowerWall,
             kind: Kind::SolidCylindrical,
             footprint: Footprint::Circle {
                 center: [0.0, 1.0],

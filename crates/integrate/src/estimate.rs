@@ -4,18 +4,17 @@
 
 use std::collections::BTreeMap;
 
+use plan::label::Label;
+use plan::scale::ModelScale;
 use serde::{Deserialize, Serialize};
 
 /// estimate.json.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Estimate {
-    /// "m" with a drawing scale, else "px" (plan pixels).
-    pub units: String,
-    /// Output units per plan pixel.
-    pub scale: f64,
-    /// Output units per metre, used for the sizes only known in metres (wall walks, roofs,
-    /// slits): 1 with a scale, else derived from the plan (see `assumptions`).
-    pub units_per_metre: f64,
+    /// The model's units (`units`), model units per plan pixel (`scale`) and per metre
+    /// (`units_per_metre`), decided once by [`plan::scale::ModelScale::decide`].
+    #[serde(flatten)]
+    pub scale: ModelScale,
     pub plan: PlanSource,
     pub structures: Vec<Structure>,
     /// What was assumed rather than measured.
@@ -37,7 +36,7 @@ pub struct Structure {
     /// Symbol in the generated program, e.g. `tower2`.
     pub id: String,
     /// The plan label (§5.1.6) of the shape, the root of its hierarchy (§6.1.3).
-    pub label: String,
+    pub label: Label,
     pub kind: Kind,
     pub footprint: Footprint,
     pub height: f64,
@@ -81,13 +80,47 @@ pub enum Footprint {
     },
 }
 
+/// The wall a façade is mapped to: a side of a rectangle (the local −z, +z, +x, −x faces of
+/// the box) or an arc of a circle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    North,
+    South,
+    East,
+    West,
+    Arc,
+}
+
+impl Side {
+    /// The four sides of a box, in the order the program writes them.
+    pub const BOX: [Side; 4] = [Side::North, Side::South, Side::East, Side::West];
+
+    /// `north`, `south`, `east`, `west` or `arc`, as estimate.json and the program's symbols
+    /// write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::North => "north",
+            Side::South => "south",
+            Side::East => "east",
+            Side::West => "west",
+            Side::Arc => "arc",
+        }
+    }
+}
+
+impl std::fmt::Display for Side {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// A façade estimate mapped onto a structure, scaled into model units (§6.1.2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MappedFacade {
     pub image: String,
-    /// Which wall: `north`, `south`, `east`, `west` (rectangle sides, the local −z, +z, +x,
-    /// −x faces of the box) or `arc`.
-    pub side: String,
+    /// Which wall.
+    pub side: Side,
     /// For an arc: start and end angle (radians, counter-clockwise on the drawing, 0 = +x).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub arc: Option<[f64; 2]>,
@@ -171,7 +204,7 @@ impl Structure {
     /// A tower: a tower room's structure (round or square) or a tower drawn solid as a bulge
     /// of the curtain.
     pub fn is_tower(&self) -> bool {
-        self.label == "tower_room" || self.kind == Kind::SolidCylindrical
+        self.label == Label::TowerRoom || self.kind == Kind::SolidCylindrical
     }
 }
 

@@ -11,6 +11,8 @@
 //!   of every parameter.
 //! - [`program::generate`] writes the VSG program (§7.2.2) that [`vsg::run_with`] turns into the
 //!   model; [`library::Library`] resolves the medieval library it imports.
+//! - [`pipeline::reconstruct`] runs all of it on a [`project::Project`], reading the files it
+//!   names through the caller's [`pipeline::Files`]: the commands are adapters over it.
 //! - [`synth`] draws a synthetic project (plan and perspective façade photos with known answers).
 //!
 //! ```
@@ -20,14 +22,15 @@
 //! let estimate = integrate(&Inputs {
 //!     plan: &plan,
 //!     plan_image: "plan.png",
-//!     scale: Some(truth.metres_per_pixel),
+//!     scale: plan::scale::GivenScale::MetresPerPixel(truth.metres_per_pixel),
 //!     facades: &[],
 //!     gothics: &[],
 //!     correspondences: &[],
 //! })
-//! .unwrap();
-//! assert_eq!(estimate.units, "m");
-//! assert!(estimate.structures.iter().filter(|s| s.label == "tower_room").count() >= 2);
+//! .unwrap()
+//! .estimate;
+//! assert_eq!(estimate.scale.units, plan::scale::Units::Metres);
+//! assert!(estimate.structures.iter().filter(|s| s.label == plan::label::Label::TowerRoom).count() >= 2);
 //! let src = program::generate(&estimate, &program::Options::default());
 //! let model = vsg::run_with("model.vsg", &src, &vsg::RunOptions::default(), &mut integrate::library::Library::default()).unwrap();
 //! assert!(model.terminals().count() > 0);
@@ -38,6 +41,7 @@ pub mod estimate;
 pub mod gothic;
 pub mod library;
 pub mod photo;
+pub mod pipeline;
 pub mod program;
 pub mod project;
 pub mod structures;
@@ -53,12 +57,13 @@ use plan::ParsedPlan;
 use crate::correspond::{Placement, facade_at, place, structure_at};
 use crate::estimate::{
     Element, Estimate, FloorEstimate, GothicMapped, Kind, MappedFacade, PlanSource, Provenance,
-    Structure, WindowColumns,
+    Side, Structure, WindowColumns,
 };
 use crate::gothic::GothicFacadeEstimate;
 use crate::photo::FacadeEstimate;
 use crate::project::Correspondence;
-use crate::structures::{Frame, assumed_units_per_metre};
+use crate::textures::Texture;
+use plan::scale::{GivenScale, ModelScale, NoScaleBar, ScaleNote};
 
 /// Why integration failed; each names the PROJECT.toml entry at fault.
 #[derive(Debug, thiserror::Error)]
@@ -68,6 +73,14 @@ pub enum IntegrateError {
         image: String,
         step: String,
         message: String,
+    },
+    #[error(
+        "scale_bar = {metres}: {why} in plan = \"{plan}\"; give scale = METRES_PER_PIXEL instead"
+    )]
+    NoScaleBar {
+        plan: String,
+        metres: f64,
+        why: NoScaleBar,
     },
     #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
     Correspondence {
@@ -93,8 +106,9 @@ pub struct Inputs<'a> {
     pub plan: &'a ParsedPlan,
     /// The plan's name in PROJECT.toml (for provenance).
     pub plan_image: &'a str,
-    /// Metres per plan pixel.
-    pub scale: Option<f64>,
+    /// What the project says of the drawing's scale; [`ModelScale::decide`] turns it into the
+    /// model's frame.
+    pub scale: GivenScale,
     pub facades: &'a [FacadeEstimate],
     /// Gothic façade estimates (ch. 4).
     pub gothics: &'a [GothicFacadeEstimate],
@@ -108,31 +122,38 @@ struct Mapping {
     placement: Placement,
 }
 
+/// What integration produced: the estimate and what goes with it.
+pub struct Integrated {
+    /// estimate.json, complete: texture names and Gothic program names are set.
+    pub estimate: Estimate,
+    /// How the drawing's scale was decided (an assumption is also in `estimate.assumptions`).
+    pub scale_note: ScaleNote,
+    /// The façade photos cropped to their mapped façades, named as `estimate` names them.
+    pub textures: Vec<Texture>,
+    /// Each mapped Gothic façade's block program (file name, text) that the generated program
+    /// imports.
+    pub gothic_programs: Vec<(String, String)>,
+}
+
 /// Integrates the plan and façade estimates (§6.1.1–6.1.4).
-pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
+pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
     let plan = inputs.plan;
     let mut assumptions = Vec::new();
-    let (frame, units) = match inputs.scale {
-        Some(s) => (
-            Frame {
-                scale: s,
-                units_per_metre: 1.0,
-            },
-            "m",
-        ),
-        None => {
-            let (upm, why) = assumed_units_per_metre(plan);
-            assumptions.push(why);
-            (
-                Frame {
-                    scale: 1.0,
-                    units_per_metre: upm,
-                },
-                "px",
-            )
+    let (frame, scale_note) = ModelScale::decide(plan, inputs.scale).map_err(|e| {
+        let metres = match inputs.scale {
+            GivenScale::ScaleBarMetres(m) => m,
+            _ => f64::NAN,
+        };
+        IntegrateError::NoScaleBar {
+            plan: inputs.plan_image.to_string(),
+            metres,
+            why: e,
         }
-    };
-    let mut structures = structures::from_plan(plan, inputs.plan_image, frame);
+    })?;
+    if let ScaleNote::Assumed(why) = &scale_note {
+        assumptions.push(why.clone());
+    }
+    let mut structures = structures::from_plan(plan, inputs.plan_image, &frame);
     let mut mappings: Vec<Vec<Mapping>> = (0..structures.len()).map(|_| Vec::new()).collect();
     let mut gothic_mappings: Vec<Vec<(usize, Placement)>> =
         (0..structures.len()).map(|_| Vec::new()).collect();
@@ -145,7 +166,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
         let points: Vec<[f64; 2]> = c
             .plan_points
             .iter()
-            .map(|p| [p[0] * frame.scale, p[1] * frame.scale])
+            .map(|p| [p[0] * frame.units_per_pixel, p[1] * frame.units_per_pixel])
             .collect();
         let target = structure_at(&structures, points[0]).ok_or_else(|| {
             let [x, y] = c.plan_points[0];
@@ -273,12 +294,12 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
             let sy = mean_height / heights[k].max(1e-12);
             let est = &inputs.facades[m.photo];
             let (side, arc) = match m.placement {
-                Placement::Side { side, .. } => (side.to_string(), None),
-                Placement::Arc { start, end, .. } => ("arc".to_string(), Some([start, end])),
+                Placement::Side { side, .. } => (side, None),
+                Placement::Arc { start, end, .. } => (Side::Arc, Some([start, end])),
             };
             let mapped = MappedFacade {
                 image: est.name.clone(),
-                side: side.clone(),
+                side,
                 arc,
                 scale: s,
                 height_factor: sy,
@@ -325,10 +346,8 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
             map_gothic(structure, est, placement, &format!("g{}_{}", k + 1, j + 1));
         }
     }
-    Ok(Estimate {
-        units: units.into(),
-        scale: frame.scale,
-        units_per_metre: frame.units_per_metre,
+    let mut estimate = Estimate {
+        scale: frame,
         plan: PlanSource {
             image: inputs.plan_image.to_string(),
             width: plan.width,
@@ -337,6 +356,14 @@ pub fn integrate(inputs: &Inputs) -> Result<Estimate, IntegrateError> {
         },
         structures,
         assumptions,
+    };
+    let textures = textures::facade_textures(&mut estimate, inputs.facades);
+    let gothic_programs = gothic_programs(&estimate, inputs.gothics);
+    Ok(Integrated {
+        estimate,
+        scale_note,
+        textures,
+        gothic_programs,
     })
 }
 
@@ -349,12 +376,12 @@ fn map_gothic(
     alias: &str,
 ) {
     let (side, arc, w_p) = match *placement {
-        Placement::Side { side, length } => (side.to_string(), None, length),
+        Placement::Side { side, length } => (side, None, length),
         Placement::Arc {
             start,
             end,
             diameter,
-        } => ("arc".to_string(), Some([start, end]), diameter),
+        } => (Side::Arc, Some([start, end]), diameter),
     };
     let [x0, y0, x1, y1] = est.bbox;
     let s = w_p / (x1 - x0).max(1.0);
@@ -417,10 +444,7 @@ fn map_gothic(
 
 /// Each mapped Gothic façade's block program (file name, text), in the model's units and with
 /// its structure's wall thickness: the files the generated program imports.
-pub fn gothic_programs(
-    estimate: &Estimate,
-    gothics: &[GothicFacadeEstimate],
-) -> Vec<(String, String)> {
+fn gothic_programs(estimate: &Estimate, gothics: &[GothicFacadeEstimate]) -> Vec<(String, String)> {
     let mut out = Vec::new();
     for s in &estimate.structures {
         for f in &s.facades {

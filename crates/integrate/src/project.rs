@@ -105,12 +105,20 @@ pub struct Correspondence {
     pub plan_points: Vec<[f64; 2]>,
 }
 
+/// The classes texture samples can be given for (an unknown class is refused when
+/// PROJECT.toml is parsed, at its line and column).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TextureClass {
+    /// Walls without a photo of their own pick one of these per shape.
+    Wall,
+}
+
 /// Texture samples of one semantic class: boxes [x0, y0, x1, y1] in a photo.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TextureSamples {
-    /// `wall`: walls without a photo of their own pick one of these per shape.
-    pub class: String,
+    pub class: TextureClass,
     pub image: String,
     pub boxes: Vec<[f64; 4]>,
 }
@@ -173,14 +181,17 @@ impl Project {
             return bad("plan: the plan drawing's file name is empty".into());
         }
         if let Some(s) = self.scale
-            && let Err(why) = plan::check_range(s, &plan::METRES_PER_PIXEL, "metres per plan pixel")
+            && let Err(why) =
+                plan::scale::check_range(s, &plan::scale::METRES_PER_PIXEL, "metres per plan pixel")
         {
             return bad(format!("scale = {s}: {why}"));
         }
         if let Some(m) = self.scale_bar {
-            if let Err(why) =
-                plan::check_range(m, &plan::SCALE_BAR_METRES, "scale-bar length in metres")
-            {
+            if let Err(why) = plan::scale::check_range(
+                m,
+                &plan::scale::SCALE_BAR_METRES,
+                "scale-bar length in metres",
+            ) {
                 return bad(format!("scale_bar = {m}: {why}"));
             }
             if self.scale.is_some() {
@@ -218,10 +229,9 @@ impl Project {
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
-            if let Some(Err(why)) = f
-                .scale
-                .map(|m| plan::check_range(m, &plan::METRES_PER_PIXEL, "metres per pixel"))
-            {
+            if let Some(Err(why)) = f.scale.map(|m| {
+                plan::scale::check_range(m, &plan::scale::METRES_PER_PIXEL, "metres per pixel")
+            }) {
                 return entry("facade", i, &f.image, &format!("scale: {why}"));
             }
             if f.bbox.is_some_and(|b| !is_box(&b)) {
@@ -255,13 +265,6 @@ impl Project {
             }
         }
         for (i, t) in self.textures.iter().enumerate() {
-            if t.class != "wall" {
-                return bad(format!(
-                    "[[texture]] #{}: class \"{}\" is not a texture class (wall)",
-                    i + 1,
-                    t.class
-                ));
-            }
             if t.boxes.is_empty() {
                 return bad(format!(
                     "[[texture]] #{} (image = \"{}\"): no boxes",

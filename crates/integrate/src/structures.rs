@@ -10,18 +10,10 @@ use plan::ParsedPlan;
 use plan::extrude::{Heights, simplify};
 use plan::fit::Fit;
 use plan::label::Label;
+use plan::scale::{ModelScale, outer_wall_thickness};
 
 use crate::correspond::contains;
 use crate::estimate::{Element, Footprint, Kind, Provenance, Structure};
-
-/// How plan pixels become model units.
-#[derive(Debug, Clone, Copy)]
-pub struct Frame {
-    /// Model units per plan pixel.
-    pub scale: f64,
-    /// Model units per metre.
-    pub units_per_metre: f64,
-}
 
 fn structure_name(l: Label) -> Option<&'static str> {
     match l {
@@ -69,9 +61,9 @@ pub fn hierarchy(id: &str, kind: Kind) -> Vec<Element> {
 
 /// Every structure of the plan, without façades: rooms, then the bulge towers (named `tower{n}`
 /// after the tower rooms' `tower1 … tower{k}`), then the walls.
-pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure> {
+pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Structure> {
     let heights = Heights::scaled(frame.units_per_metre);
-    let s = frame.scale;
+    let s = frame.units_per_pixel;
     let mut counters: BTreeMap<&str, usize> = BTreeMap::new();
     let mut next_id = |base: &'static str| {
         let n = counters.entry(base).or_insert(0);
@@ -164,7 +156,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
         out.push(Structure {
             children: hierarchy(&id, kind),
             id,
-            label: face.label.name().to_string(),
+            label: face.label,
             kind,
             footprint,
             height: heights.of(wall_label),
@@ -180,7 +172,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
         // A bulge on a tower whose room the plan found is that tower: it is built once.
         let built = out[..rooms]
             .iter()
-            .any(|t| t.label == Label::TowerRoom.name() && contains(&t.footprint, center));
+            .any(|t| t.label == Label::TowerRoom && contains(&t.footprint, center));
         if built || b.radius <= 0.5 {
             continue;
         }
@@ -219,7 +211,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
         out.push(Structure {
             children: hierarchy(&id, Kind::SolidCylindrical),
             id,
-            label: Label::TowerWall.name().to_string(),
+            label: Label::TowerWall,
             kind: Kind::SolidCylindrical,
             footprint: Footprint::Circle {
                 center,
@@ -272,7 +264,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
             out.push(Structure {
                 children: hierarchy(&id, Kind::Solid),
                 id,
-                label: edge.label.name().to_string(),
+                label: edge.label,
                 kind: Kind::Solid,
                 footprint: Footprint::Rectangle {
                     center: [
@@ -291,38 +283,4 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: Frame) -> Vec<Structure>
         }
     }
     out
-}
-
-/// Model units per metre when the drawing has no scale: the outer walls' median thickness is
-/// taken as 2.5 m (a typical curtain wall); without outer walls, 1 m is 1/100 of the castle's
-/// larger side (as `castellan plan` does). Returns the value and the assumption in words.
-pub fn assumed_units_per_metre(plan: &ParsedPlan) -> (f64, String) {
-    let Some(median) = outer_wall_thickness(plan) else {
-        let size = f64::from(plan.width.max(plan.height));
-        return (
-            size / 100.0,
-            format!(
-                "no drawing scale and no outer wall: 1 m taken as 1/100 of the drawing's {size} px"
-            ),
-        );
-    };
-    (
-        median / 2.5,
-        format!(
-            "no drawing scale: the outer walls' median thickness ({median:.1} px) taken as 2.5 m, so 1 m = {:.2} px",
-            median / 2.5
-        ),
-    )
-}
-
-/// The outer walls' median thickness (plan pixels), if the plan has outer walls.
-fn outer_wall_thickness(plan: &ParsedPlan) -> Option<f64> {
-    let mut t: Vec<f64> = plan
-        .edges
-        .iter()
-        .filter(|e| e.label == Label::CastleOuterWall && e.thickness > 0.0)
-        .map(|e| e.thickness)
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t.get(t.len() / 2).copied()
 }

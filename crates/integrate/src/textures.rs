@@ -14,7 +14,10 @@ pub struct Texture {
     pub image: RgbImage,
 }
 
-fn stem(name: &str) -> String {
+/// The file name of `name` without folders and extension, with every character other than
+/// ASCII letters, digits, `-` and `_` replaced by `_`: the one rule for the names of a photo's
+/// outputs (overlays, textures), safe in URLs and on every file system.
+pub fn safe_stem(name: &str) -> String {
     let file = name.rsplit(['/', '\\']).next().unwrap_or(name);
     let base = file.rsplit_once('.').map_or(file, |(b, _)| b);
     base.chars()
@@ -48,7 +51,7 @@ pub fn facade_textures(estimate: &mut Estimate, photos: &[FacadeEstimate]) -> Ve
             };
             let name = format!(
                 "textures/{}_{}.png",
-                stem(&f.image),
+                safe_stem(&f.image),
                 f.bbox
                     .map(|v| v.round() as i64)
                     .map(|v| v.to_string())
@@ -97,7 +100,7 @@ pub fn wall_samples(estimate: &Estimate, photos: &[FacadeEstimate]) -> (Vec<Text
                     widths.push(f64::from(image.width()) * s);
                 }
                 out.push(Texture {
-                    name: format!("textures/wall_{}_{}.png", stem(&p.name), k + 1),
+                    name: format!("textures/wall_{}_{}.png", safe_stem(&p.name), k + 1),
                     image,
                 });
             }
@@ -113,7 +116,7 @@ mod tests {
 
     #[test]
     fn names_are_file_safe_and_crops_stay_inside() {
-        assert_eq!(stem("photos/keep south.v2.jpg"), "keep_south_v2");
+        assert_eq!(safe_stem("photos/keep south.v2.jpg"), "keep_south_v2");
         let img = RgbImage::new(10, 8);
         assert_eq!(
             crop(&img, [2.0, 1.0, 20.0, 5.0]).unwrap().dimensions(),

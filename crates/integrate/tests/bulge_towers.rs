@@ -4,6 +4,9 @@
 //! generated shaft is a closed solid of volume π r² h; a bulge on a tower whose room the plan
 //! found is not built twice.
 
+use plan::label::Label;
+use plan::scale::GivenScale;
+
 use std::f64::consts::PI;
 
 use integrate::estimate::{Estimate, Footprint, Kind, Structure};
@@ -23,12 +26,13 @@ fn estimate(plan: &plan::ParsedPlan, scale: Option<f64>) -> Estimate {
     integrate(&Inputs {
         plan,
         plan_image: "plan.png",
-        scale,
+        scale: scale.map_or(GivenScale::Unknown, GivenScale::MetresPerPixel),
         facades: &[],
         gothics: &[],
         correspondences: &[],
     })
     .unwrap()
+    .estimate
 }
 
 fn towers(e: &Estimate) -> Vec<&Structure> {
@@ -85,13 +89,13 @@ fn every_bulge_tower_becomes_one_solid_tower_of_its_centre_and_radius() {
     let curtain = after
         .structures
         .iter()
-        .find(|x| x.label == "castle_outer_wall")
+        .find(|x| x.label == Label::CastleOuterWall)
         .expect("a curtain")
         .height;
     for (i, (t, b)) in solid.iter().zip(&plan.bulge_towers).enumerate() {
         // Named after the tower rooms, labelled as the plan labels a bulge's pixels.
         assert_eq!(t.id, format!("tower{}", rooms + i + 1));
-        assert_eq!(t.label, "tower_wall");
+        assert_eq!(t.label, Label::TowerWall);
         assert_eq!(
             t.children
                 .iter()
@@ -220,7 +224,7 @@ fn a_bulge_on_a_tower_with_a_room_is_built_once() {
     assert_eq!(solid[0].id, "tower3");
     assert_eq!(circle(solid[0]), ([320.0, 412.0], 15.0));
     // The tower height in pixels: 20 m at the assumed pixels per metre.
-    assert!((solid[0].height - 20.0 * e.units_per_metre).abs() < 1e-9);
+    assert!((solid[0].height - 20.0 * e.scale.units_per_metre).abs() < 1e-9);
     let src = program::generate(&e, &program::Options::default());
     assert!(
         src.contains("import \"solid_tower.vsg\" as tower3"),
@@ -255,7 +259,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
     let e = integrate(&Inputs {
         plan: &plan,
         plan_image: "plan.png",
-        scale: Some(castle.metres_per_pixel),
+        scale: GivenScale::MetresPerPixel(castle.metres_per_pixel),
         facades: std::slice::from_ref(&facade),
         gothics: &[],
         correspondences: &[Correspondence {
@@ -264,7 +268,8 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
             plan_points: vec![b.center],
         }],
     })
-    .unwrap();
+    .unwrap()
+    .estimate;
     let t = e
         .structures
         .iter()
@@ -273,7 +278,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
     assert_eq!(t.kind, Kind::SolidCylindrical, "{}", t.id);
     let (_, r) = circle(t);
     let f = &t.facades[0];
-    assert_eq!(f.side, "arc");
+    assert_eq!(f.side, integrate::estimate::Side::Arc);
     assert!((f.width - 2.0 * r).abs() < 1e-9);
     assert!((t.height - f.height).abs() < 1e-9 && t.height != 20.0);
     assert_eq!(t.provenance["height"].image, name);

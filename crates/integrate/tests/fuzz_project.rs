@@ -111,7 +111,10 @@ fn check_accepted(text: &str) -> Result<(), TestCaseError> {
         Ok(p) => {
             prop_assert!(!p.plan.trim().is_empty());
             if let Some(s) = p.scale {
-                prop_assert!(plan::METRES_PER_PIXEL.contains(&s), "scale {s} accepted");
+                prop_assert!(
+                    plan::scale::METRES_PER_PIXEL.contains(&s),
+                    "scale {s} accepted"
+                );
             }
             for f in &p.facades {
                 prop_assert!(p.correspondences.iter().any(|c| c.facade == f.image));

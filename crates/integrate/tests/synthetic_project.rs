@@ -3,6 +3,9 @@
 //! have the façades' height, floor count and windows per floor after scaling; the towers must
 //! match the plan.
 
+use plan::label::Label;
+use plan::scale::GivenScale;
+
 use integrate::estimate::{Footprint, Structure};
 use integrate::photo::{FacadePhoto, estimate_facade};
 use integrate::project::Correspondence;
@@ -62,21 +65,27 @@ fn keep_and_towers_match_facades_and_plan() {
             plan_points: vec![castle.keep_south_point()],
         })
         .collect();
-    let estimate = integrate(&Inputs {
+    let integrated = integrate(&Inputs {
         plan: &plan,
         plan_image: "plan.png",
-        scale: Some(castle.metres_per_pixel),
+        scale: GivenScale::MetresPerPixel(castle.metres_per_pixel),
         facades: &estimates,
         gothics: &[],
         correspondences: &correspondences,
     })
     .unwrap();
+    // Each mapped façade names the crop of its photo that integration returns.
+    let mut estimate = integrated.estimate;
+    for f in estimate.structures.iter_mut().flat_map(|s| &mut s.facades) {
+        let name = f.texture.take().expect("a texture for a mapped façade");
+        assert!(integrated.textures.iter().any(|t| t.name == name), "{name}");
+    }
 
     let k = keep(&estimate.structures);
     assert!(matches!(k.footprint, Footprint::Rectangle { .. }), "{k:?}");
     assert_eq!(k.facades.len(), 2);
     for f in &k.facades {
-        assert_eq!(f.side, "south");
+        assert_eq!(f.side, integrate::estimate::Side::South);
         assert!(f.joint);
         assert_eq!(f.floors.len() as u32, castle.floors, "{f:?}");
         let windowed: Vec<u32> = f.floors.iter().map(|fl| fl.windows).collect();
@@ -102,7 +111,7 @@ fn keep_and_towers_match_facades_and_plan() {
     let towers: Vec<&Structure> = estimate
         .structures
         .iter()
-        .filter(|s| s.label == "tower_room")
+        .filter(|s| s.label == Label::TowerRoom)
         .collect();
     assert_eq!(towers.len(), 2, "{:?}", estimate.structures);
     for t in towers {
@@ -191,16 +200,17 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
     let result = integrate(&Inputs {
         plan: &plan,
         plan_image: "plan.png",
-        scale: Some(castle.metres_per_pixel),
+        scale: GivenScale::MetresPerPixel(castle.metres_per_pixel),
         facades: std::slice::from_ref(&estimate),
         gothics: &[],
         correspondences: std::slice::from_ref(&correspondence),
     })
-    .unwrap();
+    .unwrap()
+    .estimate;
     let tower = keep(&result.structures);
-    assert_eq!(tower.label, "tower_room");
+    assert_eq!(tower.label, Label::TowerRoom);
     let f = &tower.facades[0];
-    assert_eq!(f.side, "arc");
+    assert_eq!(f.side, integrate::estimate::Side::Arc);
     let [a, b] = f.arc.unwrap();
     // Within the 0.5-px offset of the fitted centre from the drawn one, seen 18 px away.
     assert!((b - a - std::f64::consts::FRAC_PI_2).abs() < 0.1, "{a} {b}");
@@ -259,15 +269,17 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
     let result = integrate(&Inputs {
         plan: &plan,
         plan_image: "plan.png",
-        scale: Some(castle.metres_per_pixel),
+        scale: GivenScale::MetresPerPixel(castle.metres_per_pixel),
         facades: &[],
         gothics: &gothics,
         correspondences: std::slice::from_ref(&correspondence),
     })
     .unwrap();
+    let generated = result.gothic_programs.clone();
+    let result = result.estimate;
     let keep = keep(&result.structures);
     let f = &keep.facades[0];
-    assert_eq!(f.side, "north");
+    assert_eq!(f.side, integrate::estimate::Side::North);
     let g = f.gothic.as_ref().expect("a Gothic façade");
     assert_eq!(g.elements, gothics[0].estimate.elements.len());
     // Its width is the keep's north side and its height the keep's height.
@@ -278,7 +290,6 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
         src.contains(&format!("import {:?} as {}", g.program, g.alias)),
         "{src}"
     );
-    let generated = integrate::gothic_programs(&result, &gothics);
     assert_eq!(generated.len(), 1);
     let model = vsg::run_with(
         "model.vsg",

@@ -2,13 +2,13 @@
 //! surroundings, outer walls, courtyard, tower walls by the convexity (Jensen) test, tower
 //! rooms, great hall and its walls, chapel and its walls, unknown — then every pixel's label.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::graph::Graph;
 use crate::thin::Mask;
 
 /// The label names of the PLAN.json / LABELS.png contract, in legend order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Label {
     CastleSurroundings = 0,

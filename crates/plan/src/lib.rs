@@ -51,6 +51,7 @@ pub mod hatching;
 mod inner_towers;
 pub mod label;
 pub mod output;
+pub mod scale;
 pub mod scalebar;
 mod strokes;
 pub mod synth;
@@ -58,30 +59,6 @@ pub mod thin;
 
 use image::DynamicImage;
 
-/// Plausible drawing scales in metres per pixel, the one rule for every scale a user gives
-/// (`--scale`, PROJECT.toml's `scale`, a façade's `scale`): from 0.1 mm a pixel (a detail drawn
-/// at 10 000 px a metre) to 100 m a pixel (a town in a thumbnail). Outside it a scale is a typo,
-/// and the model it gives overflows or vanishes (issue 19: `scale = 1e300`).
-pub const METRES_PER_PIXEL: std::ops::RangeInclusive<f64> = 1e-4..=100.0;
-/// Plausible lengths of a drawn scale bar, in metres (1 cm to 100 km).
-pub const SCALE_BAR_METRES: std::ops::RangeInclusive<f64> = 0.01..=100_000.0;
-
-/// `Ok` when `value` lies in `range`; otherwise why not, for a message that names the entry.
-pub fn check_range(
-    value: f64,
-    range: &std::ops::RangeInclusive<f64>,
-    unit: &str,
-) -> Result<(), String> {
-    if range.contains(&value) {
-        Ok(())
-    } else {
-        Err(format!(
-            "{value} is not a plausible {unit} (castellan takes {} to {})",
-            range.start(),
-            range.end()
-        ))
-    }
-}
 use imageproc::distance_transform::{Norm, distance_transform};
 
 use crate::fit::Fit;

@@ -16,7 +16,7 @@ use serde_json::{Value, json};
 
 use super::guard::Access;
 use super::store::{Store, upload_name};
-use crate::reconstruct_cmd::stem;
+use integrate::textures::safe_stem as stem;
 
 /// The server's state: one project and what it is doing.
 pub struct App {
@@ -162,12 +162,20 @@ pub(super) fn file_url(name: &str) -> String {
 }
 
 pub(super) fn find_facade<'a>(p: &'a Project, name: &str) -> Result<&'a FacadeEntry, ApiError> {
-    p.facades.iter().find(|f| f.image == name).ok_or_else(|| {
-        ApiError(
-            StatusCode::NOT_FOUND,
-            format!("no façade \"{name}\" in the project"),
-        )
-    })
+    Ok(&p.facades[facade_index(p, name)?])
+}
+
+/// The position of the façade photo `name` among the project's [[facade]] entries.
+pub(super) fn facade_index(p: &Project, name: &str) -> Result<usize, ApiError> {
+    p.facades
+        .iter()
+        .position(|f| f.image == name)
+        .ok_or_else(|| {
+            ApiError(
+                StatusCode::NOT_FOUND,
+                format!("no façade \"{name}\" in the project"),
+            )
+        })
 }
 
 /// What an edit of one façade checks against: the project, a copy of the façade's entry and
@@ -195,9 +203,17 @@ pub async fn project(State(app): State<Arc<App>>) -> Saved {
             Some(p) => Some(super::clean::load(app, p)?),
             None => None,
         };
+        // The boxes of each façade; one that cannot be read shows no boxes and says why (the
+        // façade stage refuses it with the same message).
         let mut training = serde_json::Map::new();
+        let mut problems = Vec::new();
         for f in p.iter().flat_map(|p| &p.facades) {
-            let t = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
+            let t = integrate::pipeline::training(f, &app.store).unwrap_or_else(|e| {
+                problems.push(format!("[[facade]] image = \"{}\": {e}", f.image));
+                facade::classify::Training {
+                    classes: Default::default(),
+                }
+            });
             training.insert(f.image.clone(), serde_json::to_value(t).unwrap_or_default());
         }
         let model = app
@@ -212,6 +228,7 @@ pub async fn project(State(app): State<Arc<App>>) -> Saved {
                 "dir": app.store.dir.display().to_string(),
                 "project": p,
                 "training": training,
+                "problems": problems,
                 "cleaning": cleaning,
                 "outputs": model,
             }),

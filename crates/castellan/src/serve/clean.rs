@@ -17,7 +17,7 @@ use super::api::{
     ApiError, App, Saved, blocking, check_version, err, file_url, if_match, versioned,
 };
 use crate::images::{png, read_image};
-use crate::reconstruct_cmd::stem;
+use integrate::textures::safe_stem as stem;
 
 /// Remembers the uploaded drawing and the strokes, so the user can undo any of them: the
 /// cleaned image is always the original's binary image with every stroke painted again.

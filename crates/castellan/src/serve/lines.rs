@@ -14,7 +14,7 @@ use super::api::{
     ApiError, App, Saved, blocking, check_version, err, facade_for_edit, file_url, find_facade,
     if_match, versioned,
 };
-use crate::reconstruct_cmd::stem;
+use integrate::textures::safe_stem as stem;
 
 /// Most segments per family one LINES.json may hold.
 pub const MAX_SEGMENTS: usize = 2000;

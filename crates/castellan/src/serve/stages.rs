@@ -10,15 +10,16 @@ use axum::extract::{Path, State};
 use axum::http::{HeaderMap, StatusCode};
 use facade::classify::Training;
 use facade::rectify::ManualLines;
+use integrate::pipeline;
 use integrate::project::{Correspondence, FacadeEntry, TrainingSource};
 use serde_json::{Value, json};
 
 use super::api::{
-    ApiError, App, Reply, Saved, blocking, check_version, err, facade_for_edit, file_url,
-    find_facade, if_match, versioned,
+    ApiError, App, Reply, Saved, blocking, check_version, err, facade_for_edit, facade_index,
+    file_url, find_facade, if_match, versioned,
 };
 use crate::images::{png, read_image};
-use crate::reconstruct_cmd::stem;
+use integrate::textures::safe_stem as stem;
 
 /// The façade's LINES.json (user-set rectification segments), if it names one.
 fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiError> {
@@ -55,29 +56,36 @@ where
         .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
 }
 
-/// POST /api/plan: the plan stage (ch. 5) → label overlay.
+/// POST /api/plan: the plan stage (ch. 5) → label overlay, as `reconstruct` makes it.
 pub async fn plan(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "plan", |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let t = Instant::now();
-        let path = app.store.path(&p.plan).map_err(err(StatusCode::CONFLICT))?;
-        let image = read_image(&path).map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
-        let parsed = plan::parse(&image, &p.plan_options())
-            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{}: {e}", p.plan)))?;
-        let overlay = "out/overlays/plan_labels.png";
-        write_png(
-            app,
-            overlay,
-            &plan::output::overlay(&parsed, &image.to_luma8()),
-        )?;
+        let stage = pipeline::parse_plan(&p, &app.store)
+            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let overlay = write_overlay(app, &stage.overlay)?;
+        let parsed = &stage.parsed;
         Ok(Json(json!({
-            "overlay": file_url(overlay),
+            "overlay": file_url(&overlay),
             "width": parsed.width, "height": parsed.height,
             "faces": parsed.faces.len(), "edges": parsed.edges.len(),
             "ms": t.elapsed().as_millis(),
         })))
     })
     .await
+}
+
+/// Writes a pipeline overlay under out/, as `reconstruct` does; returns its project name.
+fn write_overlay(app: &App, overlay: &pipeline::Overlay) -> Result<String, ApiError> {
+    let name = format!("out/{}", overlay.name);
+    let bytes = overlay
+        .picture
+        .png()
+        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?;
+    app.store
+        .commit(None, vec![(name.clone(), bytes)])
+        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+    Ok(name)
 }
 
 /// POST /api/facades/{name}/rectify: §3.1.1 → line-family overlay and the rectified photo.
@@ -155,32 +163,24 @@ pub async fn training(
     .await
 }
 
-/// POST /api/facades/{name}/facade: ch. 3 on one photo → the façade tree over the rectified photo.
+/// POST /api/facades/{name}/facade: ch. 3 on one photo → the façade tree over the rectified
+/// photo (the overlays of `reconstruct`).
 pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>) -> Reply {
     blocking(app, "facade", move |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let f = find_facade(&p, &name)?;
+        let index = facade_index(&p, &name)?;
         let t = Instant::now();
-        let img = read_photo(app, f)?;
-        let training = app.store.training(f).map_err(err(StatusCode::CONFLICT))?;
-        let lines = read_lines(app, f)?;
-        let e = integrate::photo::estimate_facade(&integrate::photo::FacadePhoto {
-            name: &f.image,
-            image: &img,
-            training: &training,
-            lines: lines.as_ref(),
-            rectified: f.rectified,
-            bbox: f.bbox,
-            scale: f.scale,
-            seed: p.seed.unwrap_or(0),
-        })
-        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
-        let overlay = format!("out/overlays/{}_facade.png", stem(&f.image));
-        write_png(
-            app,
-            &overlay,
-            &crate::facade_cmd::label_overlay(&e.rectified, &e.model.labels()),
-        )?;
+        let (e, overlays) = pipeline::estimate_photo(&p, index, &app.store, p.seed.unwrap_or(0))
+            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let mut written = Vec::new();
+        for o in &overlays {
+            written.push(write_overlay(app, o)?);
+        }
+        let overlay = written
+            .iter()
+            .find(|n| n.ends_with("_facade.png"))
+            .cloned()
+            .unwrap_or_default();
         let floors: usize = e.model.facades.iter().map(|f| f.floors.len()).sum();
         let windows: usize = e
             .model
@@ -228,7 +228,7 @@ pub(super) fn outputs() -> Value {
 pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "reconstruct", |app| {
         app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let s = crate::reconstruct_cmd::reconstruct(
+        let s = crate::reconstruction::reconstruct(
             &app.store.dir.join(super::store::PROJECT_FILE),
             &app.store.dir.join("out"),
             None,
@@ -237,7 +237,7 @@ pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
         let stages: serde_json::Map<String, Value> = s
             .stages
             .iter()
-            .map(|(k, v)| (k.clone(), json!(v.round())))
+            .map(|(k, v)| (k.name().to_string(), json!(v.round())))
             .collect();
         Ok(Json(json!({
             "outputs": outputs(),

@@ -8,8 +8,7 @@ use std::path::{Component, Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use anyhow::{Context, Result, anyhow};
-use facade::classify::Training;
-use integrate::project::{FacadeEntry, Project, TrainingSource};
+use integrate::project::{Project, TrainingSource};
 
 use crate::output::Outputs;
 
@@ -162,18 +161,19 @@ impl Store {
             _ => Ok(None),
         }
     }
+}
 
-    /// A façade's training boxes, from its file or inline; none yet is an empty set.
-    pub fn training(&self, f: &FacadeEntry) -> Result<Training> {
-        match &f.training {
-            TrainingSource::Inline(t) => Ok(t.clone()),
-            TrainingSource::File(name) => match self.existing(name)? {
-                None => Ok(Training {
-                    classes: Default::default(),
-                }),
-                Some(path) => crate::text::read_json(&path, "a TRAINING.json"),
-            },
-        }
+/// The files the project names, read through the store's confinement: the pipeline's stages
+/// (`integrate::pipeline`) read the served project through this, as `reconstruct` reads a folder.
+impl integrate::pipeline::Files for Store {
+    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
+        let path = self.path(name).map_err(|e| format!("{e:#}"))?;
+        crate::images::read_image(&path).map_err(|e| format!("{e:#}"))
+    }
+
+    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
+        let path = self.path(name).map_err(|e| format!("{e:#}"))?;
+        crate::text::read_json(&path, what).map_err(|e| format!("{e:#}"))
     }
 }
 

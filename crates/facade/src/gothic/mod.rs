@@ -35,6 +35,7 @@
 
 pub mod classes;
 pub mod detect;
+pub mod draw;
 pub mod dual;
 pub mod element;
 pub mod group;

@@ -5,17 +5,19 @@
 use std::fmt::Write;
 
 use super::{Options, list, n, storeys};
-use crate::estimate::{Footprint, MappedFacade, Structure};
+use crate::estimate::{Footprint, MappedFacade, Side, Structure};
 
 /// Sides of a box: the axis its wall runs along, the axis through it, whether the outside is
 /// the far end of that axis, and whether the façade's left-to-right (seen from outside) runs
 /// against the run axis.
-fn side_frame(side: &str) -> (&'static str, &'static str, bool, bool) {
+/// `None` for an arc, which is not a side of a box.
+fn side_frame(side: Side) -> Option<(&'static str, &'static str, bool, bool)> {
     match side {
-        "north" => ("X", "Z", false, true),
-        "south" => ("X", "Z", true, false),
-        "east" => ("Z", "X", true, true),
-        _ => ("Z", "X", false, false),
+        Side::North => Some(("X", "Z", false, true)),
+        Side::South => Some(("X", "Z", true, false)),
+        Side::East => Some(("Z", "X", true, true)),
+        Side::West => Some(("Z", "X", false, false)),
+        Side::Arc => None,
     }
 }
 
@@ -58,7 +60,7 @@ pub(super) fn hollow_box_with_facades(
         storey_names.join(", "),
         n((0.3 * u).min(floor_heights.iter().cloned().fold(f64::INFINITY, f64::min) * 0.2))
     );
-    for side in ["north", "south", "east", "west"] {
+    for side in Side::BOX {
         let facade = s.facades.iter().position(|f| f.side == side);
         match facade {
             None => {
@@ -79,7 +81,7 @@ fn gothic_wall(
     s: &Structure,
     f: &MappedFacade,
     g: &crate::estimate::GothicMapped,
-    side: &str,
+    side: Side,
     imports: &mut String,
     rules: &mut String,
 ) {
@@ -88,10 +90,11 @@ fn gothic_wall(
     };
     let (a, b, h) = (size[0] / 2.0, size[1] / 2.0, s.height / 2.0);
     let (x, z, turn) = match side {
-        "north" => (a, 0.0, std::f64::consts::PI),
-        "south" => (-a, 0.0, 0.0),
-        "east" => (0.0, b, std::f64::consts::FRAC_PI_2),
-        _ => (0.0, -b, -std::f64::consts::FRAC_PI_2),
+        Side::North => (a, 0.0, std::f64::consts::PI),
+        Side::South => (-a, 0.0, 0.0),
+        Side::East => (0.0, b, std::f64::consts::FRAC_PI_2),
+        Side::West => (0.0, -b, -std::f64::consts::FRAC_PI_2),
+        Side::Arc => return,
     };
     let id = &s.id;
     let alias = &g.alias;
@@ -129,14 +132,16 @@ fn facade_rules(
     s: &Structure,
     f: &MappedFacade,
     k: usize,
-    side: &str,
+    side: Side,
     t: f64,
     params: &mut String,
     rules: &mut String,
 ) {
     let id = &s.id;
     let fid = format!("{id}Facade{k}");
-    let (run, through, outside_far, reversed) = side_frame(side);
+    let Some((run, through, outside_far, reversed)) = side_frame(side) else {
+        return;
+    };
     // Under a photo the pieces keep its texture untinted.
     // Under a photo the pieces keep its texture untinted, but only on a skin on the wall's
     // outer face (a twentieth of the wall); behind it the wall is masonry, so the photo does

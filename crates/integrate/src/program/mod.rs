@@ -12,6 +12,7 @@ use std::fmt::Write;
 
 use crate::estimate::{Estimate, Footprint, Kind, Structure};
 use facades::hollow_box_with_facades;
+use plan::label::Label;
 
 /// Generation settings.
 #[derive(Debug, Clone)]
@@ -51,7 +52,7 @@ fn list(v: &[f64]) -> String {
 
 /// The program.
 pub fn generate(e: &Estimate, o: &Options) -> String {
-    let u = e.units_per_metre;
+    let u = e.scale.units_per_metre;
     let mut head = String::new();
     let mut w = Writer::default();
     let _ = writeln!(
@@ -66,8 +67,8 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
             .map(|f| &f.image)
             .collect::<std::collections::BTreeSet<_>>()
             .len(),
-        e.units,
-        n(e.scale),
+        e.scale.units.symbol(),
+        n(e.scale.units_per_pixel),
         n(u)
     );
     for a in &e.assumptions {
@@ -90,7 +91,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
             w.params,
             "\n// {} ({}): footprint from {}; height from {}.",
             s.id,
-            s.label,
+            s.label.name(),
             source("footprint"),
             source("height")
         );
@@ -168,7 +169,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                 let (wd, d) = (size[0], size[1]);
                 let wall = s.wall_thickness.min(wd.min(d) * 0.3);
                 let floors = f64::from(storeys(s, o, u));
-                if s.label == "tower_room" {
+                if s.label == Label::TowerRoom {
                     w.library(
                         "square_tower.vsg",
                         s,

@@ -27,9 +27,9 @@ pub struct ScaleBar {
 }
 
 impl ScaleBar {
-    /// Units per pixel when the bar is `length` units long.
-    pub fn scale(&self, length: f64) -> f64 {
-        length / f64::from(self.length_px.max(1))
+    /// Metres per pixel when the bar is `metres` long.
+    pub fn metres_per_pixel(&self, metres: f64) -> f64 {
+        metres / f64::from(self.length_px.max(1))
     }
 
     /// "from (x0, y0) to (x1, y1), N px", for messages that let the user check the bar.

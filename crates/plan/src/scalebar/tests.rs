@@ -27,7 +27,7 @@ fn finds_a_ruled_bar_with_ticks_and_its_length() {
         (b.x0, b.y0, b.x1, b.y1, b.length_px),
         (150, 170, 270, 170, 121)
     );
-    assert!((b.scale(30.25) - 0.25).abs() < 1e-12);
+    assert!((b.metres_per_pixel(30.25) - 0.25).abs() < 1e-12);
     assert_eq!(b.describe(), "from (150, 170) to (270, 170), 121 px");
 }
 
@@ -197,5 +197,9 @@ fn issue_11_coucy_scale_bar_is_found_on_the_real_drawing() {
         "{b:?}"
     );
     assert!((578..=582).contains(&b.y0), "{b:?}");
-    assert!((b.scale(50.0) - 0.32).abs() < 0.01, "{}", b.scale(50.0));
+    assert!(
+        (b.metres_per_pixel(50.0) - 0.32).abs() < 0.01,
+        "{}",
+        b.metres_per_pixel(50.0)
+    );
 }
