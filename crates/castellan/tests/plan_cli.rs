@@ -289,7 +289,11 @@ fn plan_model_and_reconstruct_take_the_same_metre_without_a_scale() {
         .iter()
         .filter_map(|a| a["max"].as_array().map(|m| m[1].as_f64().unwrap()))
         .fold(f64::NEG_INFINITY, f64::max);
-    assert!(top <= 20.0 * upm * 1.001, "top {top} vs 20 m = {}", 20.0 * upm);
+    assert!(
+        top <= 20.0 * upm * 1.001,
+        "top {top} vs 20 m = {}",
+        20.0 * upm
+    );
 }
 
 /// The JSON chunk of a binary glTF.

@@ -9,7 +9,7 @@ use facade::rectify::{ManualLines, Rectification};
 use image::RgbImage;
 use nalgebra::Matrix3;
 
-use crate::IntegrateError;
+use crate::error::IntegrateError;
 use crate::photo::{Rectified, cut_outline, rectify_photo};
 
 /// A Gothic façade photo with what the user gave for it.

@@ -8,9 +8,10 @@ use facade::model::FacadeModel;
 use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
 use facade::search::{SearchParams, parse};
 use image::RgbImage;
+use image::imageops::crop_imm;
 use nalgebra::Matrix3;
 
-use crate::IntegrateError;
+use crate::error::IntegrateError;
 
 /// A façade photo with what the user gave for it.
 pub struct FacadePhoto<'a> {
@@ -155,7 +156,7 @@ pub(crate) fn cut_outline(
         .ok_or_else(|| {
             outline_error(format!("bbox {b:?} does not map into the rectified photo"))
         })?;
-    let cut = crate::textures::crop(rectified, r).ok_or_else(|| {
+    let cut = crop(rectified, r).ok_or_else(|| {
         outline_error(format!(
             "bbox {b:?} has no pixels inside the rectified photo"
         ))
@@ -216,6 +217,16 @@ pub fn map_box(b: &[f64; 4], h: &Matrix3<f64>) -> Option<[f64; 4]> {
     let top = tl.1.max(tr.1);
     let bottom = bl.1.min(br.1);
     (right > left && bottom > top).then_some([left, top, right, bottom])
+}
+
+/// The part of `img` inside box `b` = [x0, y0, x1, y1], clipped; `None` if nothing is left.
+pub fn crop(img: &RgbImage, b: [f64; 4]) -> Option<RgbImage> {
+    let (w, h) = img.dimensions();
+    let x0 = b[0].max(0.0).round() as u32;
+    let y0 = b[1].max(0.0).round() as u32;
+    let x1 = (b[2].round().max(0.0) as u32).min(w);
+    let y1 = (b[3].round().max(0.0) as u32).min(h);
+    (x1 > x0 + 1 && y1 > y0 + 1).then(|| crop_imm(img, x0, y0, x1 - x0, y1 - y0).to_image())
 }
 
 #[cfg(test)]

@@ -20,9 +20,9 @@ use rayon::prelude::*;
 
 use crate::estimate::Estimate;
 use crate::gothic::{GothicFacadeEstimate, GothicPhoto, estimate_gothic};
-use crate::photo::{FacadeEstimate, FacadePhoto, estimate_facade};
+use crate::photo::{FacadeEstimate, FacadePhoto, crop, estimate_facade};
 use crate::project::{FacadeEntry, GothicEntry, Project, TrainingSource};
-use crate::textures::{Texture, crop, safe_stem, wall_samples};
+use crate::textures::{Texture, safe_stem, wall_samples};
 use crate::{Inputs, IntegrateError, integrate};
 
 /// The files a project names (the plan, photos, TRAINING.json, LINES.json), read by the

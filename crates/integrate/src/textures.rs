@@ -3,10 +3,9 @@
 //! the sample set from which walls without a photo pick one per shape.
 
 use image::RgbImage;
-use image::imageops::crop_imm;
 
 use crate::estimate::Estimate;
-use crate::photo::FacadeEstimate;
+use crate::photo::{FacadeEstimate, crop};
 
 /// A texture image and the name the program uses for it.
 pub struct Texture {
@@ -29,16 +28,6 @@ pub fn safe_stem(name: &str) -> String {
             }
         })
         .collect()
-}
-
-/// The part of `img` inside box `b` = [x0, y0, x1, y1], clipped; `None` if nothing is left.
-pub fn crop(img: &RgbImage, b: [f64; 4]) -> Option<RgbImage> {
-    let (w, h) = img.dimensions();
-    let x0 = b[0].max(0.0).round() as u32;
-    let y0 = b[1].max(0.0).round() as u32;
-    let x1 = (b[2].round().max(0.0) as u32).min(w);
-    let y1 = (b[3].round().max(0.0) as u32).min(h);
-    (x1 > x0 + 1 && y1 > y0 + 1).then(|| crop_imm(img, x0, y0, x1 - x0, y1 - y0).to_image())
 }
 
 /// The façade photos, cropped to each mapped façade; sets `texture` on the mapped façades.

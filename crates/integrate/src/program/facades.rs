@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::{Options, list, n, storeys};
+use super::common::{Options, list, n, storeys};
 use crate::estimate::{Footprint, MappedFacade, Side, Structure};
 
 /// Sides of a box: the axis its wall runs along, the axis through it, whether the outside is

@@ -1,0 +1,39 @@
+//! Why integration failed (ch. 6): each error names the PROJECT.toml entry at fault.
+
+use plan::scale::NoScaleBar;
+
+/// Why integration failed; each names the PROJECT.toml entry at fault.
+#[derive(Debug, thiserror::Error)]
+pub enum IntegrateError {
+    #[error("{image}: {step}: {message}")]
+    Facade {
+        image: String,
+        step: String,
+        message: String,
+    },
+    #[error(
+        "scale_bar = {metres}: {why} in plan = \"{plan}\"; give scale = METRES_PER_PIXEL instead"
+    )]
+    NoScaleBar {
+        plan: String,
+        metres: f64,
+        why: NoScaleBar,
+    },
+    #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
+    Correspondence {
+        index: usize,
+        facade: String,
+        message: String,
+    },
+}
+
+impl IntegrateError {
+    /// A chapter 3 or 4 step that failed on the photo `image`.
+    pub fn facade(image: &str, step: &str, e: facade::FacadeError) -> IntegrateError {
+        IntegrateError::Facade {
+            image: image.to_string(),
+            step: step.to_string(),
+            message: e.to_string(),
+        }
+    }
+}
