@@ -109,7 +109,12 @@ fn output_stems(files: &[&Path]) -> Vec<String> {
         .collect()
 }
 
-pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options) -> Result<()> {
+pub fn run(
+    dir: &Path,
+    out_dir: &Path,
+    metres_per_pixel: Option<f64>,
+    opts: &plan::Options,
+) -> Result<()> {
     let entries = list_entries(dir)?;
     if entries.iter().all(|(_, skip)| skip.is_some()) {
         bail!("{}: the folder holds no files to parse", dir.display());
@@ -128,7 +133,7 @@ pub fn run(dir: &Path, out_dir: &Path, scale: Option<f64>, opts: &plan::Options)
         .zip(&stems)
         .map(|((path, skip), stem)| {
             let row = match skip {
-                None => one_drawing(path, stem, &writer, scale, opts),
+                None => one_drawing(path, stem, &writer, metres_per_pixel, opts),
                 Some(reason) => Row {
                     file: file_name(path),
                     reason: reason.clone(),
@@ -172,13 +177,13 @@ fn one_drawing(
     path: &Path,
     stem: &str,
     writer: &FolderWriter,
-    scale: Option<f64>,
+    metres_per_pixel: Option<f64>,
     opts: &plan::Options,
 ) -> Row {
     let file = file_name(path);
     let started = Instant::now();
     let result = catch_unwind(AssertUnwindSafe(|| {
-        parse_and_write(path, &file, stem, writer, scale, opts)
+        parse_and_write(path, &file, stem, writer, metres_per_pixel, opts)
     }))
     .unwrap_or_else(|_| Err(anyhow!("internal error (panic) while parsing")));
     let time_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -201,13 +206,13 @@ fn parse_and_write(
     file: &str,
     stem: &str,
     writer: &FolderWriter,
-    scale: Option<f64>,
+    metres_per_pixel: Option<f64>,
     opts: &plan::Options,
 ) -> Result<Row> {
     let img = crate::images::read_image(path)?;
     let parsed = plan::parse(&img, opts).map_err(|e| anyhow!("{e}"))?;
     let out = |suffix: &str| PathBuf::from(format!("{stem}.{suffix}"));
-    let doc = plan::output::plan_json(&parsed, scale);
+    let doc = plan::output::plan_json(&parsed, metres_per_pixel);
     let labels_path = out("labels.png");
     let overlay_path = out("overlay.png");
     let over = plan::output::overlay(&parsed, &img.to_luma8());

@@ -25,7 +25,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     };
     let image = match (&args.batch, &args.image) {
         (Some(dir), _) => {
-            return crate::batch_cmd::run(dir, &args.output, args.scale, &options);
+            return crate::batch_cmd::run(dir, &args.output, args.metres_per_pixel, &options);
         }
         (None, Some(image)) => image,
         (None, None) => return Err(anyhow!("give a plan drawing or --batch DIR")),
@@ -38,7 +38,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     })
     .map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
-    let given = plan::scale::GivenScale::from_options(args.scale, args.scale_bar);
+    let given = plan::scale::GivenScale::from_options(args.metres_per_pixel, args.scale_bar_metres);
     let (model_scale, note) = plan::scale::ModelScale::decide(&parsed, given)
         .map_err(|e| anyhow!("{file}: {e}; give --scale METRES_PER_PIXEL instead"))?;
     let metres_per_pixel =
@@ -58,11 +58,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         outputs.add(path, plan::output::svg(&parsed).into_bytes());
     }
     if let Some(path) = &args.model {
-        let src = plan::extrude::to_vsg(
-            &parsed,
-            model_scale.units_per_pixel,
-            &plan::extrude::Heights::scaled(model_scale.units_per_metre),
-        );
+        let src = plan::extrude::to_vsg(&parsed, &model_scale);
         let model = vsg::run(&src, &vsg::RunOptions::default()).map_err(|e| {
             anyhow!(
                 "{}: internal error in the extrusion program: {}",
@@ -130,12 +126,12 @@ pub struct PlanArgs {
     #[arg(long, value_name = "OVERLAY.png")]
     pub overlay: Option<PathBuf>,
     /// Drawing scale in metres per pixel; the model comes out in metres.
-    #[arg(long, value_parser = parse_scale)]
-    pub scale: Option<f64>,
+    #[arg(long = "scale", value_name = "METRES_PER_PIXEL", value_parser = parse_scale)]
+    pub metres_per_pixel: Option<f64>,
     /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
     /// and the scale (metres per pixel) follows from its length in pixels.
-    #[arg(long, value_name = "METRES", value_parser = parse_bar_metres, conflicts_with_all = ["scale", "batch"])]
-    pub scale_bar: Option<f64>,
+    #[arg(long = "scale-bar", value_name = "METRES", value_parser = parse_bar_metres, conflicts_with_all = ["metres_per_pixel", "batch"])]
+    pub scale_bar_metres: Option<f64>,
     /// Remove vault ribs: lines thinner than this fraction of the wall thickness drawn across
     /// a room that is round without them (0.3 finds Coucy's four corner towers round; off by
     /// default, see docs/plan.md).
@@ -283,8 +279,11 @@ mod flag_tests {
 
     #[test]
     fn plan_scale_flag_is_positive() {
-        assert_eq!(plan_args(&[]).unwrap().scale, None);
-        assert_eq!(plan_args(&["--scale", "0.05"]).unwrap().scale, Some(0.05));
+        assert_eq!(plan_args(&[]).unwrap().metres_per_pixel, None);
+        assert_eq!(
+            plan_args(&["--scale", "0.05"]).unwrap().metres_per_pixel,
+            Some(0.05)
+        );
         assert!(plan_args(&["--scale", "0"]).is_err());
         assert!(plan_args(&["--scale", "-1"]).is_err());
         assert!(plan_args(&["--scale", "nan"]).is_err());
@@ -329,9 +328,9 @@ mod flag_tests {
 
     #[test]
     fn plan_scale_bar_flag_is_positive_and_excludes_scale() {
-        assert_eq!(plan_args(&[]).unwrap().scale_bar, None);
+        assert_eq!(plan_args(&[]).unwrap().scale_bar_metres, None);
         assert_eq!(
-            plan_args(&["--scale-bar", "30"]).unwrap().scale_bar,
+            plan_args(&["--scale-bar", "30"]).unwrap().scale_bar_metres,
             Some(30.0)
         );
         assert!(plan_args(&["--scale-bar", "0"]).is_err());

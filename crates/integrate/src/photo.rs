@@ -26,7 +26,7 @@ pub struct FacadePhoto<'a> {
     /// The user's outline of the façade in the photo's pixels (replaces §3.1.5).
     pub bbox: Option<[f64; 4]>,
     /// Metres per pixel when the photo is a measured elevation (rectified photos only).
-    pub scale: Option<f64>,
+    pub metres_per_pixel: Option<f64>,
     pub seed: u64,
 }
 
@@ -133,7 +133,7 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         training,
         log_likelihoods,
         model,
-        metres_per_pixel: photo.scale,
+        metres_per_pixel: photo.metres_per_pixel,
     })
 }
 

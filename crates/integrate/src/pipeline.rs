@@ -198,7 +198,7 @@ pub fn estimate_photo(
         lines: lines.as_ref(),
         rectified: f.rectified,
         bbox: f.bbox,
-        scale: f.scale,
+        metres_per_pixel: f.metres_per_pixel,
         seed,
     })
     .map_err(|e| at(entry)(e.to_string()))?;
@@ -369,7 +369,7 @@ pub fn reconstruct(
     let integrated = integrate(&Inputs {
         plan: &plan_stage.parsed,
         plan_image: &project.plan,
-        scale: GivenScale::from_options(project.scale, project.scale_bar),
+        scale: GivenScale::from_options(project.metres_per_pixel, project.scale_bar_metres),
         facades: &estimates,
         gothics: &gothics,
         correspondences: &project.correspondences,

@@ -11,13 +11,13 @@ use serde::{Deserialize, Serialize};
 pub struct Project {
     /// The plan drawing.
     pub plan: String,
-    /// Metres per plan pixel; the model comes out in metres when given.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scale: Option<f64>,
+    /// Metres per plan pixel (the key `scale`); the model comes out in metres when given.
+    #[serde(default, rename = "scale", skip_serializing_if = "Option::is_none")]
+    pub metres_per_pixel: Option<f64>,
     /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
     /// (`plan::scalebar`) and the scale follows from its length in pixels. Instead of `scale`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scale_bar: Option<f64>,
+    #[serde(default, rename = "scale_bar", skip_serializing_if = "Option::is_none")]
+    pub scale_bar_metres: Option<f64>,
     /// Thin lines (vault ribs) removed from round rooms of the plan before parsing, as a
     /// fraction of the wall thickness (`castellan plan --thin-lines`); off when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -63,9 +63,10 @@ pub struct FacadeEntry {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bbox: Option<[f64; 4]>,
     /// Metres per pixel of a measured elevation (from its scale bar): the façade is then scaled
-    /// by it instead of by the plan width it is mapped to (§6.1.2's s = w_p / w_f).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scale: Option<f64>,
+    /// by it instead of by the plan width it is mapped to (§6.1.2's s = w_p / w_f). The key is
+    /// `scale`.
+    #[serde(default, rename = "scale", skip_serializing_if = "Option::is_none")]
+    pub metres_per_pixel: Option<f64>,
 }
 
 fn is_box(b: &[f64; 4]) -> bool {
@@ -180,13 +181,13 @@ impl Project {
         if self.plan.trim().is_empty() {
             return bad("plan: the plan drawing's file name is empty".into());
         }
-        if let Some(s) = self.scale
+        if let Some(s) = self.metres_per_pixel
             && let Err(why) =
                 plan::scale::check_range(s, &plan::scale::METRES_PER_PIXEL, "metres per plan pixel")
         {
             return bad(format!("scale = {s}: {why}"));
         }
-        if let Some(m) = self.scale_bar {
+        if let Some(m) = self.scale_bar_metres {
             if let Err(why) = plan::scale::check_range(
                 m,
                 &plan::scale::SCALE_BAR_METRES,
@@ -194,7 +195,7 @@ impl Project {
             ) {
                 return bad(format!("scale_bar = {m}: {why}"));
             }
-            if self.scale.is_some() {
+            if self.metres_per_pixel.is_some() {
                 return bad("give either scale (metres per pixel) or scale_bar (the drawn bar's length in metres), not both".into());
             }
         }
@@ -229,7 +230,7 @@ impl Project {
             }
         }
         for (i, f) in self.facades.iter().enumerate() {
-            if let Some(Err(why)) = f.scale.map(|m| {
+            if let Some(Err(why)) = f.metres_per_pixel.map(|m| {
                 plan::scale::check_range(m, &plan::scale::METRES_PER_PIXEL, "metres per pixel")
             }) {
                 return entry("facade", i, &f.image, &format!("scale: {why}"));
@@ -317,7 +318,7 @@ plan_points = [[10, 10], [20, 20]]
     fn the_contract_example_parses() {
         let p = Project::from_toml(GOOD).unwrap();
         assert_eq!(p.plan, "plan.png");
-        assert_eq!(p.scale, Some(0.05));
+        assert_eq!(p.metres_per_pixel, Some(0.05));
         assert_eq!(p.facades.len(), 2);
         assert!(matches!(p.facades[0].training, TrainingSource::File(_)));
         assert!(matches!(p.facades[1].training, TrainingSource::Inline(_)));
@@ -356,7 +357,10 @@ plan_points = [[10, 10], [20, 20]]
         let e = Project::from_toml(&both).unwrap_err().to_string();
         assert!(e.contains("not both"), "{e}");
         let bar = GOOD.replace("scale = 0.05", "scale_bar = 50");
-        assert_eq!(Project::from_toml(&bar).unwrap().scale_bar, Some(50.0));
+        assert_eq!(
+            Project::from_toml(&bar).unwrap().scale_bar_metres,
+            Some(50.0)
+        );
         let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale_bar = -2"))
             .unwrap_err()
             .to_string();
@@ -410,7 +414,7 @@ plan_points = [[10, 10], [20, 20]]
             |extra: &str| GOOD.replace("rectified = true", &format!("rectified = true\n{extra}"));
         let p = Project::from_toml(&with("bbox = [1, 2, 30, 40]\nscale = 0.126")).unwrap();
         assert_eq!(p.facades[1].bbox, Some([1.0, 2.0, 30.0, 40.0]));
-        assert_eq!(p.facades[1].scale, Some(0.126));
+        assert_eq!(p.facades[1].metres_per_pixel, Some(0.126));
         assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p, "round trip");
         let e = Project::from_toml(&with("bbox = [30, 2, 1, 40]"))
             .unwrap_err()

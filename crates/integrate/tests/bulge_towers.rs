@@ -251,7 +251,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
         lines: None,
         rectified: true,
         bbox: None,
-        scale: None,
+        metres_per_pixel: None,
         seed: 7,
     })
     .unwrap();

@@ -110,7 +110,7 @@ fn check_accepted(text: &str) -> Result<(), TestCaseError> {
     match Project::from_toml(text) {
         Ok(p) => {
             prop_assert!(!p.plan.trim().is_empty());
-            if let Some(s) = p.scale {
+            if let Some(s) = p.metres_per_pixel {
                 prop_assert!(
                     plan::scale::METRES_PER_PIXEL.contains(&s),
                     "scale {s} accepted"

@@ -50,7 +50,7 @@ fn keep_and_towers_match_facades_and_plan() {
                 lines: None,
                 rectified: false,
                 bbox: None,
-                scale: None,
+                metres_per_pixel: None,
                 seed: 7,
             })
             .unwrap()
@@ -185,7 +185,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         lines: None,
         rectified: true,
         bbox: None,
-        scale: None,
+        metres_per_pixel: None,
         seed: 7,
     })
     .unwrap();

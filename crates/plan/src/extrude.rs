@@ -7,6 +7,7 @@ use std::fmt::Write;
 use crate::ParsedPlan;
 use crate::fit::Fit;
 use crate::label::Label;
+use crate::scale::ModelScale;
 
 /// Extrusion heights by label, in output units (§5.3 order: tower walls > tower rooms >
 /// outer walls > great hall wall > great hall > chapel wall > chapel > unknown wall >
@@ -85,9 +86,13 @@ fn symbol(l: Label) -> String {
     l.name().to_string()
 }
 
-/// The VSG program extruding `plan` (§5.3). Plan pixel (x, y) goes to (x·scale, z = y·scale);
+/// The VSG program extruding `plan` (§5.3) in the model frame `frame` (decided by
+/// [`ModelScale::decide`]): plan pixel (x, y) goes to (x·s, z = y·s), s = `units_per_pixel`,
+/// and the class heights are [`Heights::metres`] in model units;
 /// y is up. Each instance is a terminal named after its label, coloured as in the overlay.
-pub fn to_vsg(plan: &ParsedPlan, scale: f64, heights: &Heights) -> String {
+pub fn to_vsg(plan: &ParsedPlan, frame: &ModelScale) -> String {
+    let scale = frame.units_per_pixel;
+    let heights = &Heights::scaled(frame.units_per_metre);
     let mut shapes: Vec<(String, Label)> = Vec::new();
     let f = |v: f64| format!("{:.4}", v);
     for e in &plan.edges {

@@ -21,13 +21,13 @@ pub fn legend() -> Value {
 }
 
 /// The PLAN.json document (ARCHITECTURE.md contract), with the tower count, wall thickness,
-/// pre-processing figures and warnings added. `scale` (units per pixel) is recorded, not
-/// applied: coordinates stay in pixels.
-pub fn plan_json(p: &ParsedPlan, scale: Option<f64>) -> Value {
+/// pre-processing figures and warnings added. `scale` (metres per pixel, given or read from
+/// the bar) is recorded, not applied: coordinates stay in pixels.
+pub fn plan_json(p: &ParsedPlan, metres_per_pixel: Option<f64>) -> Value {
     json!({
         "width": p.width,
         "height": p.height,
-        "scale": scale,
+        "scale": metres_per_pixel,
         "legend": legend(),
         "towers": p.towers,
         "bulge_towers": p.bulge_towers,

@@ -82,7 +82,7 @@ fn every_pixel_has_a_legend_label() {
 #[test]
 fn extrusion_program_runs_and_towers_stand_highest() {
     let (p, _) = parsed();
-    let src = plan::extrude::to_vsg(p, 0.1, &plan::extrude::Heights::metres());
+    let src = plan::extrude::to_vsg(p, &plan::scale::ModelScale::metric(0.1));
     let model = vsg::run(&src, &vsg::RunOptions::default()).unwrap();
     let stats = vsg::stats::Stats::of(&model, &vsg::shape::Tessellation::default());
     for name in [

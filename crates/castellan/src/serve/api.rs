@@ -295,8 +295,8 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
             ("plan", None) => {
                 project = Some(Project {
                     plan: name.clone(),
-                    scale: None,
-                    scale_bar: None,
+                    metres_per_pixel: None,
+                    scale_bar_metres: None,
                     thin_lines: None,
                     hatching: None,
                     seed: None,
@@ -324,7 +324,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                         lines: None,
                         rectified: false,
                         bbox: None,
-                        scale: None,
+                        metres_per_pixel: None,
                     });
                 }
             }

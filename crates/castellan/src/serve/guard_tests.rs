@@ -295,7 +295,7 @@ async fn a_hand_written_project_keeps_its_comments() {
     let p = saved_project(dir.path());
     assert_eq!(p.correspondences.len(), 2);
     assert_eq!(p.correspondences[1].plan_points, vec![[330.0, 300.0]]);
-    assert_eq!(p.scale, Some(0.25));
+    assert_eq!(p.metres_per_pixel, Some(0.25));
     // A changed value keeps its comment.
     let list =
         r#"[{"facade":"keep_south_near.png","facade_point":[255,235],"plan_points":[[321,304]]}]"#;

@@ -438,18 +438,18 @@ mod tests {
         let mut p = Project::from_toml("plan = \"p.png\"").unwrap();
         store.commit(Some(&p), vec![]).unwrap();
         assert_eq!(store.load().unwrap().unwrap().plan, "p.png");
-        p.scale = Some(-1.0);
+        p.metres_per_pixel = Some(-1.0);
         assert!(store.commit(Some(&p), vec![]).is_err());
-        assert_eq!(store.load().unwrap().unwrap().scale, None);
+        assert_eq!(store.load().unwrap().unwrap().metres_per_pixel, None);
         // A façade waiting for its correspondence is a valid state to save, not to reconstruct.
-        p.scale = None;
+        p.metres_per_pixel = None;
         p.facades.push(integrate::project::FacadeEntry {
             image: "f.png".into(),
             training: TrainingSource::File("f.training.json".into()),
             lines: None,
             rectified: false,
             bbox: None,
-            scale: None,
+            metres_per_pixel: None,
         });
         store.commit(Some(&p), vec![]).unwrap();
         assert_eq!(store.load().unwrap().unwrap().facades.len(), 1);
