@@ -89,13 +89,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     for (file, bytes) in r.files()? {
         outputs.add(&outdir.join(file), bytes);
     }
-    let report = crate::report::html(
-        &project,
-        &r.estimate,
-        &r.exports.stats,
-        &r.stages,
-        &r.exports.glb,
-    );
+    let report = crate::report::html(&project, &r);
     outputs.add(&outdir.join("index.html"), report.into_bytes());
     outputs.commit()?;
     Ok(Summary {

@@ -6,6 +6,7 @@ use std::fmt::Write;
 
 use base64::Engine;
 use integrate::estimate::{Estimate, Footprint};
+use integrate::pipeline::Reconstruction;
 use integrate::project::Project;
 
 /// The viewer script (web/src/viewer.js with three.js, bundled by build.rs).
@@ -39,14 +40,10 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The page.
-pub fn html(
-    project: &Project,
-    e: &Estimate,
-    stats: &serde_json::Value,
-    stages: &[(integrate::pipeline::Stage, f64)],
-    glb: &[u8],
-) -> String {
+/// The page: what was read and assumed, the model, every step's overlay with its legend, the
+/// structures with the provenance of their parameters, and the time per stage.
+pub fn html(project: &Project, r: &Reconstruction) -> String {
+    let e = &r.estimate;
     let mut h = String::new();
     let _ = write!(
         h,
@@ -64,11 +61,12 @@ pub fn html(
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
     }
-    let _ = writeln!(h, "<h2>Model</h2>{}", viewer(glb, e));
+    let _ = writeln!(h, "<h2>Model</h2>{}", viewer(&r.exports.glb, e));
     let _ = writeln!(
         h,
         "<details><summary>Software-rendered preview</summary><img src=\"preview.png\" alt=\"rendered model\"></details>"
     );
+    let stats = &r.exports.stats;
     let _ = writeln!(
         h,
         "<p>{} terminals ({} visible, {} void), {} triangles, total volume {:.1}.</p>",
@@ -78,44 +76,28 @@ pub fn html(
         stats["triangles"],
         stats["volume"]["total"].as_f64().unwrap_or(0.0)
     );
-    let _ = writeln!(
-        h,
-        "<h2>Steps</h2><figure><img src=\"overlays/plan_labels.png\"><figcaption>Plan labels (ch. 5)</figcaption></figure>"
-    );
-    for f in &project.facades {
-        let stem = integrate::textures::safe_stem(&f.image);
-        if !f.rectified {
+    h.push_str("<h2>Steps</h2>");
+    for o in &r.overlays {
+        if let Some(caption) = &o.caption {
             let _ = writeln!(
                 h,
-                "<figure><img src=\"overlays/{0}_lines.png\"><figcaption>{1}: line families and vanishing points (§3.1.1)</figcaption></figure>",
-                esc(&stem),
-                esc(&f.image)
+                "<figure><img src=\"{}\"><figcaption>{}</figcaption></figure>",
+                esc(&o.name),
+                esc(caption)
             );
         }
-        let _ = writeln!(
-            h,
-            "<figure><img src=\"overlays/{0}_facade.png\"><figcaption>{1}: rectified façade, wall/window/background (§3.1.7)</figcaption></figure>",
-            esc(&stem),
-            esc(&f.image)
-        );
     }
-    for g in &project.gothics {
-        let stem = integrate::textures::safe_stem(&g.image);
-        if !g.rectified {
-            let _ = writeln!(
-                h,
-                "<figure><img src=\"overlays/{0}_lines.png\"><figcaption>{1}: line families and vanishing points (§3.1.1)</figcaption></figure>",
-                esc(&stem),
-                esc(&g.image)
-            );
-        }
-        let _ = writeln!(
-            h,
-            "<figure><img src=\"overlays/{0}_gothic.png\"><figcaption>{1}: arches, groups, nesting and stones (ch. 4)</figcaption></figure>",
-            esc(&stem),
-            esc(&g.image)
-        );
+    structures_table(&mut h, e);
+    let _ = writeln!(h, "</table><h2>Time per stage</h2><table>");
+    for (k, v) in &r.stages {
+        let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", k.name());
     }
+    let _ = writeln!(h, "</table></body></html>");
+    h
+}
+
+/// The structures (§6.1.3): footprint, height, façades and the source of every parameter.
+fn structures_table(h: &mut String, e: &Estimate) {
     let _ = writeln!(
         h,
         "<h2>Structures (§6.1.3)</h2><table><tr><th>id</th><th>label</th><th>footprint</th><th>height</th><th>façades</th><th>provenance</th></tr>"
@@ -191,10 +173,4 @@ pub fn html(
             prov.join("<br>")
         );
     }
-    let _ = writeln!(h, "</table><h2>Time per stage</h2><table>");
-    for (k, v) in stages {
-        let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", k.name());
-    }
-    let _ = writeln!(h, "</table></body></html>");
-    h
 }

@@ -109,6 +109,9 @@ fn at(entry: impl Into<String>) -> impl Fn(String) -> PipelineError {
 /// An overlay picture and the file name it is written under (relative to the output folder).
 pub struct Overlay {
     pub name: String,
+    /// What it shows, for the report's legend; `None` for data pictures the report does not
+    /// show (the label image).
+    pub caption: Option<String>,
     pub picture: Picture,
 }
 
@@ -138,6 +141,7 @@ pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, Pi
         })?;
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
+        caption: Some("Plan labels (ch. 5)".into()),
         picture: Picture::Rgb(plan::output::overlay(&parsed, &image.to_luma8())),
     };
     let svg = plan::output::svg(&parsed);
@@ -210,14 +214,19 @@ pub fn estimate_photo(
 fn facade_overlays(e: &FacadeEstimate, photo: &RgbImage) -> Vec<Overlay> {
     let stem = safe_stem(&e.name);
     let labels = e.model.labels();
-    let mut out = lines_overlay(&stem, photo, e.rectification.as_ref());
+    let mut out = lines_overlay(&e.name, &stem, photo, e.rectification.as_ref());
     out.push(Overlay {
         name: format!("overlays/{stem}_facade.png"),
+        caption: Some(format!(
+            "{}: rectified façade, wall/window/background (§3.1.7)",
+            e.name
+        )),
         picture: Picture::Rgb(facade::draw::label_overlay(&e.rectified, &labels)),
     });
     if let Some(grey) = GrayImage::from_raw(e.model.width, e.model.height, labels) {
         out.push(Overlay {
             name: format!("overlays/{stem}_labels.png"),
+            caption: None,
             picture: Picture::Grey(grey),
         });
     }
@@ -243,9 +252,18 @@ pub fn estimate_gothic_photo(
     })
     .map_err(|e| at(entry)(e.to_string()))?;
     let stem = safe_stem(&estimate.name);
-    let mut overlays = lines_overlay(&stem, &image, estimate.rectification.as_ref());
+    let mut overlays = lines_overlay(
+        &estimate.name,
+        &stem,
+        &image,
+        estimate.rectification.as_ref(),
+    );
     overlays.push(Overlay {
         name: format!("overlays/{stem}_gothic.png"),
+        caption: Some(format!(
+            "{}: arches, groups, nesting and stones (ch. 4)",
+            estimate.name
+        )),
         picture: Picture::Rgb(facade::gothic::draw::overlay(
             &estimate.facade,
             &estimate.estimate,
@@ -257,6 +275,7 @@ pub fn estimate_gothic_photo(
 
 /// The line families and vanishing points of a rectified photo (§3.1.1), if it was rectified.
 fn lines_overlay(
+    image: &str,
     stem: &str,
     photo: &RgbImage,
     rectification: Option<&facade::rectify::Rectification>,
@@ -264,6 +283,9 @@ fn lines_overlay(
     rectification
         .map(|r| Overlay {
             name: format!("overlays/{stem}_lines.png"),
+            caption: Some(format!(
+                "{image}: line families and vanishing points (§3.1.1)"
+            )),
             picture: Picture::Rgb(facade::rectify::draw_overlay(photo, r)),
         })
         .into_iter()
@@ -291,7 +313,7 @@ pub struct Reconstruction {
     /// Façade crops and wall samples, named as the program names them.
     pub textures: Vec<Texture>,
     pub plan_svg: String,
-    /// Every step's overlay, in the order of the stages.
+    /// Every step's overlay: the plan's, then each façade photo's, then each Gothic photo's.
     pub overlays: Vec<Overlay>,
     pub exports: Exports,
     /// Milliseconds per stage, in order (Gothic only when the project has Gothic photos).
@@ -359,10 +381,10 @@ pub fn reconstruct(
     if !gothic_photos.is_empty() {
         stages.push((Stage::Gothic, ms(t)));
     }
-    let (gothics, gothic_overlays): (Vec<_>, Vec<_>) = gothic_photos.into_iter().unzip();
-    overlays.extend(gothic_overlays.into_iter().flatten());
     let (estimates, facade_overlays): (Vec<_>, Vec<_>) = photos.into_iter().unzip();
     overlays.extend(facade_overlays.into_iter().flatten());
+    let (gothics, gothic_overlays): (Vec<_>, Vec<_>) = gothic_photos.into_iter().unzip();
+    overlays.extend(gothic_overlays.into_iter().flatten());
 
     progress(Progress::Started(Stage::Integrate));
     let t = Instant::now();
