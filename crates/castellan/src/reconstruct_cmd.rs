@@ -193,7 +193,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         outputs.add(
             &outdir.join(format!("overlays/{stem}_gothic.png")),
             png(
-                &crate::gothic_cmd::overlay(&g.facade, &g.estimate, Some(&g.masonry)),
+                &facade::gothic::draw::overlay(&g.facade, &g.estimate, Some(&g.masonry)),
                 Path::new("Gothic overlay"),
             )?,
         );
@@ -205,7 +205,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
         outputs.add(
             &outdir.join(format!("overlays/{stem}_facade.png")),
             png(
-                &crate::facade_cmd::label_overlay(&e.rectified, &labels),
+                &facade::draw::label_overlay(&e.rectified, &labels),
                 Path::new("façade overlay"),
             )?,
         );

@@ -179,7 +179,7 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         write_png(
             app,
             &overlay,
-            &crate::facade_cmd::label_overlay(&e.rectified, &e.model.labels()),
+            &facade::draw::label_overlay(&e.rectified, &e.model.labels()),
         )?;
         let floors: usize = e.model.facades.iter().map(|f| f.floors.len()).sum();
         let windows: usize = e

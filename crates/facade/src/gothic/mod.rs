@@ -17,6 +17,7 @@
 //! - [`to_vsg`](vsg::to_vsg): the estimate (+ stones, + a depth) as a VSG program: a wall block,
 //!   each element cut from it with the spandrel/opening construction of
 //!   `library/gothic_window.vsg` (same x0, y0, h, w, v), stones extruded as blocks.
+//! - [`draw`]: the overlay figure (mortar tinted, contours by nesting depth).
 //! - [`synth`]: synthetic façades with known arches for tests and benchmarks.
 //!
 //! ```
@@ -35,6 +36,7 @@
 
 pub mod classes;
 pub mod detect;
+pub mod draw;
 pub mod dual;
 pub mod element;
 pub mod group;
