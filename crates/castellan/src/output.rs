@@ -390,10 +390,10 @@ fn roll_forward(journal: &Path) {
         return;
     };
     for line in text.lines() {
-        if let Some((tmp, dest)) = line.split_once('\t') {
-            if Path::new(tmp).is_file() {
-                let _ = std::fs::rename(tmp, dest);
-            }
+        if let Some((tmp, dest)) = line.split_once('\t')
+            && Path::new(tmp).is_file()
+        {
+            let _ = std::fs::rename(tmp, dest);
         }
     }
 }
