@@ -1,18 +1,16 @@
 //! `castellan corners` (ch. 2: CORNERS.json and an overlay) and `castellan corners-eval` (§2.2:
 //! modified repeatability and detections per image over Oxford-style sequences, for IPFIT and
-//! the peer detections written by `benches/corners_peers.py`).
+//! the peer detections written by `benches/corners_peers.py`). The evaluation itself is
+//! `corners::evaluate`; this module finds and reads the files and writes the results.
 
-use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use corners::draw::{PALETTE, Series};
-use corners::repeat::{Homography, Repeatability, repeatability};
+use corners::evaluate::{self, EvalError, PeerFile, Sequence, SequenceData, csv, markdown, mean};
+use corners::repeat::Homography;
 use corners::{Gray, Params};
-use serde::Deserialize;
 
 use crate::output::Outputs;
 
@@ -51,32 +49,6 @@ pub fn run(args: &CornersArgs) -> Result<()> {
     Ok(())
 }
 
-/// Peer detections of one sequence (`benches/corners_peers.py`).
-#[derive(Debug, Deserialize)]
-struct PeerFile {
-    /// Detector name → per image (img1, img2, ...) a list of [x, y].
-    detectors: BTreeMap<String, Vec<Vec<[f64; 2]>>>,
-    /// Detector name → per image milliseconds (optional).
-    #[serde(default)]
-    time_ms: BTreeMap<String, Vec<f64>>,
-}
-
-/// One detector's results over one sequence.
-struct Run {
-    name: String,
-    points: Vec<Vec<[f64; 2]>>,
-    time_ms: Vec<f64>,
-}
-
-struct Sequence {
-    name: String,
-    sizes: Vec<(usize, usize)>,
-    runs: Vec<Run>,
-    /// Per run, for images 2..=n: the repeatability against image 1.
-    rates: Vec<Vec<Repeatability>>,
-    overlay: Option<image::RgbImage>,
-}
-
 fn find_image(dir: &Path, k: usize) -> Option<PathBuf> {
     ["ppm", "pgm", "png", "jpg", "jpeg", "pnm"]
         .iter()
@@ -84,7 +56,9 @@ fn find_image(dir: &Path, k: usize) -> Option<PathBuf> {
         .find(|p| p.is_file())
 }
 
-fn evaluate_sequence(
+/// Reads one sequence folder (img1, img2, ... and H1to2p, ...; the peers' `<name>.json`) and
+/// evaluates it, naming the file in every error.
+fn evaluate_folder(
     dir: &Path,
     args: &CornersEvalArgs,
     params: &Params,
@@ -107,199 +81,29 @@ fn evaluate_sequence(
         let text = crate::text::read_text(&p)?;
         homographies.push(Homography::parse(&text).map_err(|e| anyhow!("{}: {e}", p.display()))?);
     }
-    let grays: Vec<Gray> = paths.iter().map(|p| read_gray(p)).collect::<Result<_>>()?;
-    let sizes: Vec<(usize, usize)> = grays.iter().map(|g| (g.width, g.height)).collect();
-    let mut ipfit = Run {
-        name: "IPFIT".into(),
-        points: Vec::new(),
-        time_ms: Vec::new(),
-    };
-    let mut overlay = None;
-    for (g, p) in grays.iter().zip(&paths) {
-        let started = Instant::now();
-        let found = pool
-            .install(|| corners::detect(g, params))
-            .map_err(|e| anyhow!("{}: {e}", p.display()))?;
-        ipfit.time_ms.push(started.elapsed().as_secs_f64() * 1e3);
-        if overlay.is_none()
-            && let Some(scale) = args.overlays
-        {
-            overlay = Some(corners::draw::overlay(
-                g,
-                &found.corners,
-                params.window as f64,
-                scale,
-            ));
-        }
-        ipfit
-            .points
-            .push(found.corners.iter().map(|c| [c.x, c.y]).collect());
-    }
-    let mut runs = vec![ipfit];
-    if let Some(peer_dir) = &args.peers {
-        let p = peer_dir.join(format!("{name}.json"));
-        let peers: PeerFile = crate::text::read_json(&p, "a peer file")?;
-        for (det, points) in peers.detectors {
-            if points.len() != paths.len() {
-                bail!(
-                    "{}: {det} has {} images, the sequence {}",
-                    p.display(),
-                    points.len(),
-                    paths.len()
-                );
-            }
-            let time_ms = peers.time_ms.get(&det).cloned().unwrap_or_default();
-            runs.push(Run {
-                name: det,
-                points,
-                time_ms,
-            });
-        }
-    }
-    let rates = runs
-        .iter()
-        .map(|run| {
-            homographies
-                .iter()
-                .enumerate()
-                .map(|(i, h)| {
-                    repeatability(
-                        &run.points[0],
-                        sizes[0],
-                        &run.points[i + 1],
-                        sizes[i + 1],
-                        h,
-                        args.r0,
-                    )
-                })
-                .collect()
-        })
-        .collect();
-    Ok(Sequence {
+    let images: Vec<Gray> = paths.iter().map(|p| read_gray(p)).collect::<Result<_>>()?;
+    let peer_path = args
+        .peers
+        .as_ref()
+        .map(|peer_dir| peer_dir.join(format!("{name}.json")));
+    let peers: Option<PeerFile> = peer_path
+        .as_ref()
+        .map(|p| crate::text::read_json(p, "a peer file"))
+        .transpose()?;
+    let data = SequenceData {
         name,
-        sizes,
-        runs,
-        rates,
-        overlay,
+        images,
+        homographies,
+        peers,
+    };
+    evaluate::evaluate_sequence(data, params, args.r0, args.overlays, pool).map_err(|e| match e {
+        EvalError::Detect { image, error } => anyhow!("{}: {error}", paths[image].display()),
+        EvalError::PeerImages { .. } => match &peer_path {
+            Some(p) => anyhow!("{}: {e}", p.display()),
+            None => anyhow!("{e}"),
+        },
+        EvalError::Shape { .. } => anyhow!("{}: {e}", dir.display()),
     })
-}
-
-fn mean(v: impl IntoIterator<Item = f64>) -> f64 {
-    let (s, n) = v
-        .into_iter()
-        .fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
-    if n == 0 { f64::NAN } else { s / n as f64 }
-}
-
-fn csv(seqs: &[Sequence]) -> String {
-    let mut out = String::from(
-        "sequence,detector,image,width,height,detections,time_ms,n1,n2,correspondences,repeatability\n",
-    );
-    for s in seqs {
-        for (run, rates) in s.runs.iter().zip(&s.rates) {
-            for (i, pts) in run.points.iter().enumerate() {
-                let t = run
-                    .time_ms
-                    .get(i)
-                    .map(|t| format!("{t:.2}"))
-                    .unwrap_or_default();
-                let r = if i == 0 {
-                    ",,,".to_string()
-                } else {
-                    let r = &rates[i - 1];
-                    format!("{},{},{},{:.4}", r.n1, r.n2, r.correspondences, r.rate)
-                };
-                let _ = writeln!(
-                    out,
-                    "{},{},{},{},{},{},{t},{r}",
-                    s.name,
-                    run.name,
-                    i + 1,
-                    s.sizes[i].0,
-                    s.sizes[i].1,
-                    pts.len()
-                );
-            }
-        }
-    }
-    out
-}
-
-fn markdown(seqs: &[Sequence], r0: f64, threads: usize) -> String {
-    let mut md = format!(
-        "# Structural corners: modified repeatability (§2.2, r0 = {r0} px)\n\n\
-         Written by `castellan corners-eval`. Repeatability of image 1 against image k counts \
-         1-to-1 mutual nearest neighbours over the region both images see; `det/img` is the mean \
-         number of detections per image; `ms/img` the mean detection time per image \
-         (IPFIT on {} thread(s); peers as timed by `benches/corners_peers.py`).\n",
-        if threads == 0 {
-            "all".to_string()
-        } else {
-            threads.to_string()
-        }
-    );
-    let mut names: Vec<String> = Vec::new();
-    for s in seqs {
-        for r in &s.runs {
-            if !names.contains(&r.name) {
-                names.push(r.name.clone());
-            }
-        }
-    }
-    md.push_str("\n## Mean repeatability over images 2–6, per sequence\n\n| sequence |");
-    for n in &names {
-        let _ = write!(md, " {n} |");
-    }
-    md.push_str("\n| --- |");
-    md.push_str(&" ---: |".repeat(names.len()));
-    md.push('\n');
-    for s in seqs {
-        let _ = write!(md, "| {} |", s.name);
-        for n in &names {
-            match s.runs.iter().position(|r| &r.name == n) {
-                Some(k) => {
-                    let _ = write!(md, " {:.3} |", mean(s.rates[k].iter().map(|r| r.rate)));
-                }
-                None => md.push_str(" – |"),
-            }
-        }
-        md.push('\n');
-    }
-    for s in seqs {
-        let n = s.sizes.len();
-        let _ = write!(md, "\n## {}\n\n| detector |", s.name);
-        for k in 2..=n {
-            let _ = write!(md, " 1→{k} |");
-        }
-        md.push_str(" det/img | ms/img |\n| --- |");
-        md.push_str(&" ---: |".repeat(n + 1));
-        md.push('\n');
-        for (run, rates) in s.runs.iter().zip(&s.rates) {
-            let _ = write!(md, "| {} |", run.name);
-            for r in rates {
-                let _ = write!(md, " {:.3} |", r.rate);
-            }
-            let det = mean(run.points.iter().map(|p| p.len() as f64));
-            let t = mean(run.time_ms.iter().copied());
-            let t = if t.is_nan() {
-                "–".to_string()
-            } else {
-                format!("{t:.1}")
-            };
-            let _ = writeln!(md, " {det:.0} | {t} |");
-        }
-        let t = |name: &str| {
-            s.runs
-                .iter()
-                .find(|r| r.name.eq_ignore_ascii_case(name))
-                .map(|r| mean(r.time_ms.iter().copied()))
-                .filter(|t| t.is_finite() && *t > 0.0)
-        };
-        if let (Some(a), Some(b)) = (t("IPFIT"), t("Harris")) {
-            let _ = writeln!(md, "\nIPFIT / Harris time: {:.2}×", a / b);
-        }
-    }
-    md
 }
 
 pub fn eval(args: &CornersEvalArgs) -> Result<()> {
@@ -311,7 +115,7 @@ pub fn eval(args: &CornersEvalArgs) -> Result<()> {
         .context("cannot start worker threads")?;
     let mut seqs = Vec::new();
     for dir in &args.sequences {
-        let s = evaluate_sequence(dir, args, &params, &pool)?;
+        let s = evaluate_folder(dir, args, &params, &pool)?;
         eprintln!(
             "{}: IPFIT {:.0} detections/image, mean repeatability {:.3}",
             s.name,
@@ -330,18 +134,7 @@ pub fn eval(args: &CornersEvalArgs) -> Result<()> {
         markdown(&seqs, args.r0, args.threads).into_bytes(),
     );
     for s in &seqs {
-        let series: Vec<Series> = s
-            .runs
-            .iter()
-            .zip(&s.rates)
-            .enumerate()
-            .map(|(i, (run, rates))| Series {
-                name: run.name.clone(),
-                color: PALETTE[i % PALETTE.len()],
-                repeatability: rates.iter().map(|r| r.rate).collect(),
-                detections: run.points.iter().map(|p| p.len() as f64).collect(),
-            })
-            .collect();
+        let series = s.series();
         let path = args.output.join(format!("{}.png", s.name));
         outputs.add(
             &path,

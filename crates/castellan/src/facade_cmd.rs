@@ -5,7 +5,7 @@ use anyhow::{Result, anyhow};
 use clap::Args;
 use facade::classify::{self, ClassifyParams, FeatureParams, Training};
 use facade::search::{self, SearchParams};
-use image::{GrayImage, Rgb};
+use image::GrayImage;
 use std::path::PathBuf;
 
 use crate::images::png;
@@ -42,7 +42,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         outputs.add(lp, png(&g, lp)?);
     }
     if let Some(op) = &args.overlay {
-        outputs.add(op, png(&label_overlay(&img, &labels), op)?);
+        outputs.add(op, png(&facade::draw::label_overlay(&img, &labels), op)?);
     }
     outputs.commit()?;
     let windows: usize = model
@@ -58,19 +58,6 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
-}
-
-/// The image tinted by label: background red, wall magenta, window green.
-pub fn label_overlay(img: &image::RgbImage, labels: &[u8]) -> image::RgbImage {
-    let mut o = img.clone();
-    let colours = [Rgb([255u8, 40, 40]), Rgb([255, 0, 255]), Rgb([0, 220, 0])];
-    for (p, l) in o.pixels_mut().zip(labels) {
-        let c = colours[usize::from(*l).min(2)];
-        for k in 0..3 {
-            p[k] = ((u16::from(p[k]) + u16::from(c[k])) / 2) as u8;
-        }
-    }
-    o
 }
 
 /// `castellan facade` flags.

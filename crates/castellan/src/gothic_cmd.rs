@@ -10,9 +10,9 @@ use clap::Args;
 use facade::classify::{ClassifyParams, Training};
 use facade::gothic::classes::ClassMapParams;
 use facade::gothic::hatching::HatchParams;
-use facade::gothic::masonry::{self, Masonry, MasonryParams};
-use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
-use image::{GrayImage, Rgb, RgbImage};
+use facade::gothic::masonry::{self, MasonryParams};
+use facade::gothic::{GothicParams, VsgOptions};
+use image::{GrayImage, RgbImage};
 
 use crate::images::png;
 use crate::output::Outputs;
@@ -83,7 +83,13 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         outputs.add(path, png(&g, path)?);
     }
     if let Some(path) = &args.overlay {
-        outputs.add(path, png(&overlay(&img, &est, masonry.as_ref()), path)?);
+        outputs.add(
+            path,
+            png(
+                &facade::gothic::draw::overlay(&img, &est, masonry.as_ref()),
+                path,
+            )?,
+        );
     }
     if let Some(path) = &args.model {
         let options = VsgOptions {
@@ -134,33 +140,6 @@ fn read_training(path: &Path, img: &RgbImage) -> Result<Training> {
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;
     Ok(training)
-}
-
-/// The image with mortar tinted (when segmented) and every element's contour drawn: top-level
-/// elements red, nested ones blue, deeper ones green.
-pub(crate) fn overlay(img: &RgbImage, est: &GothicEstimate, masonry: Option<&Masonry>) -> RgbImage {
-    let mut o = img.clone();
-    if let Some(m) = masonry {
-        for (p, &l) in o.pixels_mut().zip(&m.labels) {
-            if l == 1 {
-                *p = Rgb([(p[0] as u16 / 2 + 127) as u8, p[1] / 2 + 100, p[2] / 2]);
-            }
-        }
-    }
-    let colours = [Rgb([255u8, 30, 30]), Rgb([40, 120, 255]), Rgb([0, 220, 0])];
-    let (w, h) = (o.width() as i64, o.height() as i64);
-    for e in &est.elements {
-        let c = colours[e.depth.min(2)];
-        for s in e.theta().contour_at(0.5) {
-            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                let (x, y) = (s.x.round() as i64 + dx, s.y.round() as i64 + dy);
-                if x >= 0 && y >= 0 && x < w && y < h {
-                    o.put_pixel(x as u32, y as u32, c);
-                }
-            }
-        }
-    }
-    o
 }
 
 /// `castellan gothic` flags.

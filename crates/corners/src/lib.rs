@@ -14,6 +14,8 @@
 //!   [`repeat::repeatability`], the 1-to-1 mutual-nearest-neighbour rate of §2.2.
 //! - [`draw`] renders an overlay of the corners and their asymptotes, and the repeatability /
 //!   detection-count plot of figure 2.4.
+//! - [`evaluate`] runs §2.2's evaluation over Oxford-style sequences (IPFIT and peer
+//!   detections) and writes its CSV and Markdown tables.
 //!
 //! ```
 //! use corners::{Gray, Params, detect};
@@ -43,6 +45,7 @@
 pub mod detect;
 pub mod draw;
 pub mod edge;
+pub mod evaluate;
 pub mod fit;
 pub mod repeat;
 mod sat;

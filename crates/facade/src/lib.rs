@@ -12,6 +12,7 @@
 //!   [`model::FacadeModel`] (FACADE.json) and its label image.
 //! - [`search`] (§3.1.7): [`search::parse`] finds façade boundaries, floors and windows
 //!   maximising the merit function.
+//! - [`draw`]: the label overlay figure (background red, wall magenta, window green).
 //!
 //! ```
 //! use facade::classify::{classify, ClassifyParams, FeatureParams, Training};

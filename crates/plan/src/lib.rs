@@ -11,6 +11,7 @@
 //!   per-pixel labels, the tower count and warnings for what could not be found.
 //! - [`output`] writes the PLAN.json value, LABELS.png, the label overlay and the vector SVG;
 //!   [`extrude::to_vsg`] writes the §5.3 extrusion as a VSG program.
+//! - [`clean`] (§5.1.1): the user's brush strokes painted on the drawing's binary image.
 //!
 //! ```
 //! use image::{GrayImage, Luma};
@@ -40,6 +41,7 @@
 
 pub mod binarize;
 pub mod bulges;
+pub mod clean;
 pub mod dashes;
 pub mod eval;
 pub mod extrude;

@@ -10,7 +10,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::ast::{DeclValue, Ident, Item, Op, OpKind, Program, Rule, Span, Successor};
 use crate::csg::BoolOp;
 use crate::diag::Diagnostic;
-use crate::eval::{Scope, Value};
+use crate::expr::{Scope, Value};
 use crate::shape::{Axis, ShapeType};
 
 /// The start symbol.

@@ -12,7 +12,7 @@ use crate::ast::{AppearanceValue, Expr, Length, OpKind, Span};
 use crate::compile::{Compiled, CompiledRule, Geometry, Succ};
 use crate::csg::{self, MeshBoolean};
 use crate::diag::{Diagnostic, num};
-use crate::eval::{Scope, ShapeAttrs};
+use crate::expr::{Scope, ShapeAttrs};
 use crate::partition::{self, Len};
 use crate::shape::{self, Axis, Primitive, ShapeError, Tessellation};
 use crate::tree::{Appearance, Model, Node, NodeId, NodeState, TextureFrame, UniqueShape};

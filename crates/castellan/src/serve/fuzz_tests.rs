@@ -114,7 +114,7 @@ fn check_training(text: &str) {
 fn check_lines(text: &str) {
     if let Ok(l) = serde_json::from_str::<ManualLines>(text) {
         for (w, h) in [(100, 100), (1, 1), (0, 0)] {
-            let _ = super::lines::check(&l, w, h);
+            let _ = l.validate(w, h);
         }
     }
 }

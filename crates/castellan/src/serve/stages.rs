@@ -118,10 +118,7 @@ pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> R
             "width": r.width, "height": r.height,
             "horizontal": r.horizontal.len(), "vertical": r.vertical.len(),
             // The segments used, as handles for the page to drag (LINES.json's format).
-            "lines": {
-                "horizontal": super::lines::as_json(&r.horizontal),
-                "vertical": super::lines::as_json(&r.vertical),
-            },
+            "lines": facade::rectify::ManualLines::from_segments(&r.horizontal, &r.vertical),
             "manual": lines.is_some(),
             "ms": t.elapsed().as_millis(),
         })))

@@ -14,9 +14,10 @@
 //! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents.
 //! - [`masonry`] with [`watershed`]: element pixels removed, watershed on the rest, regions
 //!   merged by colour into stones and mortar.
-//! - [`to_vsg`](vsg::to_vsg): the estimate (+ stones, + a depth) as a VSG program: a wall block,
-//!   each element cut from it with the spandrel/opening construction of
+//! - [`program`]: [`to_vsg`](program::to_vsg), the estimate (+ stones, + a depth) as a VSG
+//!   program: a wall block, each element cut from it with the spandrel/opening construction of
 //!   `library/gothic_window.vsg` (same x0, y0, h, w, v), stones extruded as blocks.
+//! - [`draw`]: the overlay figure (mortar tinted, contours by nesting depth).
 //! - [`synth`]: synthetic façades with known arches for tests and benchmarks.
 //!
 //! ```
@@ -44,15 +45,15 @@ pub mod hierarchy;
 pub mod likelihood;
 pub mod masonry;
 pub mod optimise;
+pub mod program;
 pub mod synth;
-pub mod vsg;
 pub mod watershed;
 
 use image::RgbImage;
 use serde::{Deserialize, Serialize};
 
 pub use element::{ArchKind, Theta};
-pub use vsg::{VsgOptions, to_vsg};
+pub use program::{VsgOptions, to_vsg};
 
 use crate::{FacadeError, Result};
 use detect::Candidate;

@@ -1,6 +1,7 @@
 //! Façade rectification (§3.1.1): straight edges → horizontal and vertical groups → two vanishing
 //! points by RANSAC → the homography sending them to infinity along x and y → a bilinear warp.
-//! Manual segment groups ([`ManualLines`], the LINES.json contract) replace the automatic ones.
+//! Manual segment groups ([`ManualLines`], the LINES.json contract, checked by
+//! [`ManualLines::validate`]) replace the automatic ones.
 
 pub mod homography;
 pub mod lines;
@@ -21,6 +22,49 @@ pub use vp::{RansacParams, Vp, angle_error, ransac_vp, weighted_lsq};
 pub struct ManualLines {
     pub horizontal: Vec<[f64; 4]>,
     pub vertical: Vec<[f64; 4]>,
+}
+
+/// Most segments per family one LINES.json may hold.
+pub const MAX_SEGMENTS: usize = 2000;
+
+impl ManualLines {
+    /// Segment families as LINES.json writes them, `[x0, y0, x1, y1]` to a hundredth of a pixel
+    /// (the detected segments, offered to the user as a starting point).
+    pub fn from_segments(horizontal: &[Segment], vertical: &[Segment]) -> ManualLines {
+        ManualLines {
+            horizontal: as_json(horizontal),
+            vertical: as_json(vertical),
+        }
+    }
+
+    /// Refuses segments the rectification cannot use, with its own message, before they are
+    /// saved: more than [`MAX_SEGMENTS`] in a family, or what [`rectify_with_lines`] refuses
+    /// for a `width` × `height` photo.
+    pub fn validate(&self, width: u32, height: u32) -> std::result::Result<(), String> {
+        for (name, family) in [
+            ("horizontal", &self.horizontal),
+            ("vertical", &self.vertical),
+        ] {
+            if family.len() > MAX_SEGMENTS {
+                return Err(format!(
+                    "{} {name} segments, more than the limit of {MAX_SEGMENTS}",
+                    family.len()
+                ));
+            }
+        }
+        rectify_with_lines(width, height, self, &RectifyParams::default())
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    }
+}
+
+/// Segments as LINES.json writes them, `[x0, y0, x1, y1]`.
+fn as_json(segments: &[Segment]) -> Vec<[f64; 4]> {
+    let round = |v: f64| (v * 100.0).round() / 100.0;
+    segments
+        .iter()
+        .map(|s| [round(s.x0), round(s.y0), round(s.x1), round(s.y1)])
+        .collect()
 }
 
 /// Rectification settings.
@@ -278,4 +322,43 @@ pub fn draw_overlay(img: &RgbImage, r: &Rectification) -> RgbImage {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square_lines() -> ManualLines {
+        ManualLines {
+            horizontal: vec![[10.0, 10.0, 90.0, 10.0], [10.0, 90.0, 90.0, 90.0]],
+            vertical: vec![[10.0, 10.0, 10.0, 90.0], [90.0, 10.0, 90.0, 90.0]],
+        }
+    }
+
+    #[test]
+    fn usable_segments_pass_and_the_rectification_says_why_others_fail() {
+        assert_eq!(square_lines().validate(100, 100), Ok(()));
+        let mut one = square_lines();
+        one.vertical.pop();
+        let e = one.validate(100, 100).unwrap_err();
+        assert!(e.contains("two vertical"), "{e}");
+        let mut dot = square_lines();
+        dot.horizontal[0] = [5.0, 5.0, 5.0, 5.0];
+        assert!(
+            dot.validate(100, 100)
+                .unwrap_err()
+                .contains("non-zero length")
+        );
+        let mut many = square_lines();
+        many.horizontal = vec![[0.0, 0.0, 10.0, 0.0]; MAX_SEGMENTS + 1];
+        assert!(many.validate(100, 100).unwrap_err().contains("limit"));
+    }
+
+    #[test]
+    fn segments_are_written_to_a_hundredth_of_a_pixel() {
+        let s = Segment::new(1.234_56, 2.0, 3.005_1, 4.999_9);
+        let lines = ManualLines::from_segments(&[s], &[]);
+        assert_eq!(lines.horizontal, vec![[1.23, 2.0, 3.01, 5.0]]);
+        assert!(lines.vertical.is_empty());
+    }
 }
