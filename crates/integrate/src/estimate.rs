@@ -138,7 +138,8 @@ pub struct MappedFacade {
     pub windows: WindowColumns,
     /// True when re-estimated jointly with the structure's other façades (§6.1.2).
     pub joint: bool,
-    /// The façade's bounding box in the rectified photo [x0, y0, x1, y1].
+    /// The façade's bounding box [x0, y0, x1, y1] in the rectified photo, or in the part of it
+    /// inside the [[facade]] entry's `bbox` when the user drew one (the search runs on that cut).
     pub bbox: [f64; 4],
     /// Texture file of the rectified, cropped photo, if written.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -191,7 +192,8 @@ pub struct Element {
 /// Where a value came from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Provenance {
-    /// The input image (plan or façade photo), or "default" for class defaults.
+    /// The input image (plan or façade photo), several joined by ", " when a value was
+    /// estimated jointly from them (§6.1.2), or "default" for class defaults.
     pub image: String,
     /// The pipeline step, e.g. "§5.1.5 circle fit of plan face 4".
     pub step: String,
