@@ -171,28 +171,28 @@ pub struct DetectorArgs {
     #[arg(long)]
     pub rectified: bool,
     /// Window side W (odd, 3..=101): smoothing, fit and suppression window.
-    #[arg(long, default_value_t = corners::Params::default().window, value_parser = parse_window)]
+    #[arg(long, default_value_t = corners::Params::default().window, value_parser = crate::flags::odd_window)]
     pub window: usize,
     /// Gaussian σ of the edge image (§2.1.1).
-    #[arg(long, default_value_t = corners::Params::default().sigma, value_parser = parse_positive)]
+    #[arg(long, default_value_t = corners::Params::default().sigma, value_parser = crate::flags::positive)]
     pub sigma: f64,
     /// Upper bound on ε, the mean distance (px) of the edge points to their asymptote.
-    #[arg(long, default_value_t = corners::Params::default().max_epsilon, value_parser = parse_positive)]
+    #[arg(long, default_value_t = corners::Params::default().max_epsilon, value_parser = crate::flags::positive)]
     pub max_epsilon: f64,
     /// Lower bound on λ, the share of inliers on the first asymptote.
-    #[arg(long, default_value_t = corners::Params::default().lambda_range.0, value_parser = parse_finite)]
+    #[arg(long, default_value_t = corners::Params::default().lambda_range.0, value_parser = crate::flags::finite)]
     pub lambda_min: f64,
     /// Upper bound on λ.
-    #[arg(long, default_value_t = corners::Params::default().lambda_range.1, value_parser = parse_finite)]
+    #[arg(long, default_value_t = corners::Params::default().lambda_range.1, value_parser = crate::flags::finite)]
     pub lambda_max: f64,
     /// Upper bound on Δ (normalised so b² − 4ac = 1, pixel units; see the corners crate docs).
-    #[arg(long, default_value_t = corners::Params::default().max_delta, value_parser = parse_positive)]
+    #[arg(long, default_value_t = corners::Params::default().max_delta, value_parser = crate::flags::positive)]
     pub max_delta: f64,
     /// Lower bound on ψ, half the corner's opening angle (rad).
-    #[arg(long, default_value_t = corners::Params::default().psi_range.0, value_parser = parse_finite)]
+    #[arg(long, default_value_t = corners::Params::default().psi_range.0, value_parser = crate::flags::finite)]
     pub psi_min: f64,
     /// Upper bound on ψ (rad).
-    #[arg(long, default_value_t = corners::Params::default().psi_range.1, value_parser = parse_finite)]
+    #[arg(long, default_value_t = corners::Params::default().psi_range.1, value_parser = crate::flags::finite)]
     pub psi_max: f64,
     /// Skip the refit without outliers (§2.1.3's optional step).
     #[arg(long)]
@@ -201,20 +201,20 @@ pub struct DetectorArgs {
     #[arg(long)]
     pub no_subpixel: bool,
     /// Outlier distance (px) of the refit and of the inlier sets (§2.1.3).
-    #[arg(long, default_value_t = corners::Params::default().refit_distance, value_parser = parse_positive)]
+    #[arg(long, default_value_t = corners::Params::default().refit_distance, value_parser = crate::flags::positive)]
     pub refit_distance: f64,
     /// Skip windows whose gradient orientations agree more than this (one straight contour);
     /// 1 fits every window (speed-up, not in §2.1).
-    #[arg(long, default_value_t = corners::Params::default().max_coherence, value_parser = parse_positive)]
+    #[arg(long, default_value_t = corners::Params::default().max_coherence, value_parser = crate::flags::positive)]
     pub max_coherence: f64,
     /// Refit only windows whose first fit passes the shape thresholds loosened by this factor
     /// (corner within slack × W/2, Δ < slack² × bound, ψ range widened); 0 refits every window
     /// (speed-up, not in §2.1.3).
-    #[arg(long, default_value_t = corners::Params::default().first_fit_slack, value_parser = parse_finite)]
+    #[arg(long, default_value_t = corners::Params::default().first_fit_slack, value_parser = crate::flags::finite)]
     pub first_fit_slack: f64,
     /// Skip the refit of a window whose first-fit corner lies within this many pixels of a
     /// corner candidate already found (0: off; speed-up, not in §2.1).
-    #[arg(long, default_value_t = corners::Params::default().duplicate_radius, value_parser = parse_nonnegative)]
+    #[arg(long, default_value_t = corners::Params::default().duplicate_radius, value_parser = crate::flags::nonnegative)]
     pub duplicate_radius: f64,
 }
 
@@ -251,53 +251,16 @@ pub struct CornersEvalArgs {
     #[arg(long, value_name = "DIR")]
     pub peers: Option<PathBuf>,
     /// Correspondence radius r0 in pixels (§2.2).
-    #[arg(long, default_value_t = 5.0, value_parser = parse_positive)]
+    #[arg(long, default_value_t = 5.0, value_parser = crate::flags::positive)]
     pub r0: f64,
     /// Worker threads for the detector (0: all cores); timings are per image at this count.
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Also write <sequence>_overlay.png, the corners of img1 drawn at this scale (e.g. 0.5).
-    #[arg(long, value_name = "SCALE", value_parser = parse_positive)]
+    #[arg(long, value_name = "SCALE", value_parser = crate::flags::positive)]
     pub overlays: Option<f64>,
     #[command(flatten)]
     pub detector: DetectorArgs,
-}
-
-fn parse_window(s: &str) -> Result<usize, String> {
-    let w: usize = s
-        .parse()
-        .map_err(|_| format!("'{s}' is not a whole number"))?;
-    if w < 3 || w.is_multiple_of(2) || w > 101 {
-        return Err(format!("the window must be odd, from 3 to 101 (found {w})"));
-    }
-    Ok(w)
-}
-
-fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if !v.is_finite() {
-        return Err(format!("'{s}' is not a finite number"));
-    }
-    Ok(v)
-}
-
-fn parse_nonnegative(s: &str) -> Result<f64, String> {
-    let v = parse_finite(s)?;
-    if v < 0.0 {
-        return Err(format!("'{s}' must not be negative"));
-    }
-    Ok(v)
-}
-
-fn parse_positive(s: &str) -> Result<f64, String> {
-    let v = parse_finite(s)?;
-    if v <= 0.0 {
-        return Err(format!("'{s}' must be positive"));
-    }
-    Ok(v)
 }
 
 #[cfg(test)]

@@ -9,8 +9,8 @@ use image::GrayImage;
 use std::path::PathBuf;
 
 use crate::images::png;
+use crate::images::read_rgb;
 use crate::output::Outputs;
-use crate::rectify_cmd::read_rgb;
 
 pub fn run(args: &FacadeArgs) -> Result<()> {
     let file = args.image.display().to_string();

@@ -15,8 +15,8 @@ use facade::gothic::{GothicParams, VsgOptions};
 use image::{GrayImage, RgbImage};
 
 use crate::images::png;
+use crate::images::read_rgb;
 use crate::output::Outputs;
-use crate::rectify_cmd::read_rgb;
 
 pub fn run(args: &GothicArgs) -> Result<()> {
     let file = args.image.display().to_string();
@@ -160,14 +160,14 @@ pub struct GothicArgs {
     #[arg(long, value_name = "MODEL.glb")]
     pub model: Option<PathBuf>,
     /// How far each stone block stands out of the wall, in model units.
-    #[arg(long, default_value_t = 0.05, value_parser = parse_positive)]
+    #[arg(long, default_value_t = 0.05, value_parser = crate::flags::positive)]
     pub depth: f64,
     /// Image pixels per model unit (e.g. pixels per metre).
-    #[arg(long, default_value_t = 100.0, value_parser = parse_positive)]
+    #[arg(long, default_value_t = 100.0, value_parser = crate::flags::positive)]
     pub px_per_unit: f64,
     /// Smallest element half-width in pixels: seeds need an empty disc this large, and
     /// elements are at least twice as wide and three times as tall.
-    #[arg(long, default_value_t = 8.0, value_parser = parse_positive)]
+    #[arg(long, default_value_t = 8.0, value_parser = crate::flags::positive)]
     pub min_radius: f64,
     /// Engravings: replace parallel hatching and coursing strokes by their tone before the
     /// edges, so hatched openings show their outline (off for photographs).
@@ -178,17 +178,6 @@ pub struct GothicArgs {
     /// so glazing bars, frames and shutters inside windows no longer hold the contours.
     #[arg(long, value_name = "TRAINING.json")]
     pub training: Option<PathBuf>,
-}
-
-fn parse_positive(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if !v.is_finite() || v <= 0.0 {
-        return Err(format!("'{s}' must be a positive number"));
-    }
-    Ok(v)
 }
 
 #[cfg(test)]

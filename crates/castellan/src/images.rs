@@ -25,6 +25,11 @@ pub fn read_image(path: &Path) -> Result<image::DynamicImage> {
     Ok(decode(&read_file(path)?, &name)?.0)
 }
 
+/// An image file as RGB, read as [`read_image`] reads it.
+pub fn read_rgb(path: &Path) -> Result<image::RgbImage> {
+    Ok(read_image(path)?.to_rgb8())
+}
+
 /// An image file's bytes, undecoded, refusing files over [`MAX_FILE_BYTES`] (and endless ones
 /// like /dev/zero).
 pub fn read_file(path: &Path) -> Result<Vec<u8>> {

@@ -6,6 +6,7 @@ mod cli;
 mod corners_cmd;
 mod demo_cmd;
 mod facade_cmd;
+mod flags;
 #[cfg(test)]
 mod fuzz_tests;
 mod gothic_cmd;

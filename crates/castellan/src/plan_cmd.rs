@@ -126,16 +126,16 @@ pub struct PlanArgs {
     #[arg(long, value_name = "OVERLAY.png")]
     pub overlay: Option<PathBuf>,
     /// Drawing scale in metres per pixel; the model comes out in metres.
-    #[arg(long = "scale", value_name = "METRES_PER_PIXEL", value_parser = parse_scale)]
+    #[arg(long = "scale", value_name = "METRES_PER_PIXEL", value_parser = crate::flags::metres_per_pixel)]
     pub metres_per_pixel: Option<f64>,
     /// Length in metres of the scale bar drawn on the plan: the bar is found in the drawing
     /// and the scale (metres per pixel) follows from its length in pixels.
-    #[arg(long = "scale-bar", value_name = "METRES", value_parser = parse_bar_metres, conflicts_with_all = ["metres_per_pixel", "batch"])]
+    #[arg(long = "scale-bar", value_name = "METRES", value_parser = crate::flags::scale_bar_metres, conflicts_with_all = ["metres_per_pixel", "batch"])]
     pub scale_bar_metres: Option<f64>,
     /// Remove vault ribs: lines thinner than this fraction of the wall thickness drawn across
     /// a room that is round without them (0.3 finds Coucy's four corner towers round; off by
     /// default, see docs/plan.md).
-    #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
+    #[arg(long, value_name = "FRACTION", value_parser = crate::flags::fraction)]
     pub thin_lines: Option<f64>,
     /// The walls are drawn hatched: the paper between diagonal hatch strokes becomes wall
     /// (off by default: on plans with solid walls it takes hachured ditches for walls; see
@@ -154,42 +154,6 @@ pub struct PlanArgs {
     /// towers bulging into a courtyard from a ward's wall count too; see docs/plan.md).
     #[arg(long)]
     pub no_inner_towers: bool,
-}
-
-fn parse_fraction(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if !(0.0..=1.0).contains(&v) {
-        return Err(format!("the fraction must be between 0 and 1, found '{s}'"));
-    }
-    Ok(v)
-}
-
-fn parse_scale(s: &str) -> Result<f64, String> {
-    parse_in(
-        s,
-        &plan::scale::METRES_PER_PIXEL,
-        "scale in metres per pixel",
-    )
-}
-
-fn parse_bar_metres(s: &str) -> Result<f64, String> {
-    parse_in(
-        s,
-        &plan::scale::SCALE_BAR_METRES,
-        "scale-bar length in metres",
-    )
-}
-
-fn parse_in(s: &str, range: &std::ops::RangeInclusive<f64>, unit: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    plan::scale::check_range(v, range, unit)?;
-    Ok(v)
 }
 
 #[cfg(test)]

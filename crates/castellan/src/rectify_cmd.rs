@@ -1,7 +1,6 @@
 //! `castellan rectify`: a façade photo → its elevation view (§3.1.1), with H.json and an overlay
 //! of the line families and vanishing points.
 
-use std::path::Path;
 use std::path::PathBuf;
 
 use anyhow::{Result, anyhow};
@@ -11,13 +10,9 @@ use facade::rectify::{self, ManualLines, RectifyParams};
 use crate::output::Outputs;
 
 /// Reads an image as RGB, naming the file on failure.
-pub fn read_rgb(path: &Path) -> Result<image::RgbImage> {
-    Ok(crate::images::read_image(path)?.to_rgb8())
-}
-
 pub fn run(args: &RectifyArgs) -> Result<()> {
     let file = args.image.display().to_string();
-    let img = read_rgb(&args.image)?;
+    let img = crate::images::read_rgb(&args.image)?;
     let params = RectifyParams {
         ransac: rectify::RansacParams {
             seed: args.seed,
