@@ -11,7 +11,7 @@ use facade::classify::{ClassifyParams, Training};
 use facade::gothic::classes::ClassMapParams;
 use facade::gothic::hatching::HatchParams;
 use facade::gothic::masonry::{self, MasonryParams};
-use facade::gothic::{GothicParams, VsgOptions};
+use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
 use image::{GrayImage, RgbImage};
 
 use crate::images::png;
@@ -21,52 +21,8 @@ use crate::output::Outputs;
 pub fn run(args: &GothicArgs) -> Result<()> {
     let file = args.image.display().to_string();
     let img = read_rgb(&args.image)?;
-    let params = GothicParams {
-        min_seed_radius: args.min_radius as f32,
-        min_width: 2.0 * args.min_radius,
-        min_height: 3.0 * args.min_radius,
-        hatching: args.hatching.then(HatchParams::default),
-        ..GothicParams::default()
-    };
-    let training = args
-        .training
-        .as_ref()
-        .map(|t| read_training(t, &img))
-        .transpose()?;
     let started = Instant::now();
-    let bar = crate::progress::bar(1);
-    let show = |p: facade::gothic::Progress| match p {
-        facade::gothic::Progress::Edges => bar.set_message("edges (§4.2)"),
-        facade::gothic::Progress::Detecting { done, total } => {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-            bar.set_message("shapes fitted (eq. 4.2)");
-        }
-        facade::gothic::Progress::Organising {
-            level,
-            of,
-            done,
-            total,
-        } => {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-            bar.set_message(format!(
-                "groups and enclosing arches, round {level} of at most {of}"
-            ));
-        }
-    };
-    let est = match &training {
-        Some(t) => facade::gothic::classes::estimate_with_classes(
-            &img,
-            t,
-            &params,
-            &ClassifyParams::default(),
-            &ClassMapParams::default(),
-        ),
-        None => facade::gothic::estimate_with_progress(&img, &params, &show),
-    }
-    .map_err(|e| anyhow!("{file}: {e}"))?;
-    bar.finish_and_clear();
+    let est = estimate(args, &img).map_err(|e| anyhow!("{file}: {e:#}"))?;
     let masonry = (args.masonry.is_some() || args.model.is_some())
         .then(|| masonry::segment(&img, &est, &MasonryParams::default()));
     let elapsed = started.elapsed();
@@ -92,22 +48,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         );
     }
     if let Some(path) = &args.model {
-        let options = VsgOptions {
-            px_per_unit: args.px_per_unit,
-            stone_depth: args.depth,
-            ..VsgOptions::default()
-        };
-        let src = facade::gothic::to_vsg(&est, masonry.as_ref(), &options);
-        let model = vsg::run(&src, &vsg::RunOptions::default()).map_err(|e| {
-            anyhow!(
-                "{}: internal error in the generated façade program: {}",
-                path.display(),
-                e.render("gothic.vsg", &src).trim_end()
-            )
-        })?;
-        let glb = vsg::export::to_glb(&model, &vsg::export::ExportOptions::default())
-            .with_context(|| format!("cannot export {}", path.display()))?;
-        outputs.add(path, glb);
+        outputs.add(path, block_model(args, &est, masonry.as_ref(), path)?);
     }
     outputs.commit()?;
     if est.elements.is_empty() {
@@ -129,6 +70,76 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Chapter 4 on the image: class-driven with `--training`, else from the edges, with a
+/// progress bar.
+fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
+    let params = GothicParams {
+        min_seed_radius: args.min_radius as f32,
+        min_width: 2.0 * args.min_radius,
+        min_height: 3.0 * args.min_radius,
+        hatching: args.hatching.then(HatchParams::default),
+        ..GothicParams::default()
+    };
+    if let Some(t) = &args.training {
+        let training = read_training(t, img)?;
+        return Ok(facade::gothic::classes::estimate_with_classes(
+            img,
+            &training,
+            &params,
+            &ClassifyParams::default(),
+            &ClassMapParams::default(),
+        )?);
+    }
+    let bar = crate::progress::bar(1);
+    let show = |p: facade::gothic::Progress| match p {
+        facade::gothic::Progress::Edges => bar.set_message("edges (§4.2)"),
+        facade::gothic::Progress::Detecting { done, total } => {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message("shapes fitted (eq. 4.2)");
+        }
+        facade::gothic::Progress::Organising {
+            level,
+            of,
+            done,
+            total,
+        } => {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message(format!(
+                "groups and enclosing arches, round {level} of at most {of}"
+            ));
+        }
+    };
+    let est = facade::gothic::estimate_with_progress(img, &params, &show)?;
+    bar.finish_and_clear();
+    Ok(est)
+}
+
+/// The block-level model (wall, elements, extruded stones) as binary glTF.
+fn block_model(
+    args: &GothicArgs,
+    est: &GothicEstimate,
+    masonry: Option<&facade::gothic::masonry::Masonry>,
+    path: &Path,
+) -> Result<Vec<u8>> {
+    let options = VsgOptions {
+        px_per_unit: args.px_per_unit,
+        stone_depth: args.depth,
+        ..VsgOptions::default()
+    };
+    let src = facade::gothic::to_vsg(est, masonry, &options);
+    let model = vsg::run(&src, &vsg::RunOptions::default()).map_err(|e| {
+        anyhow!(
+            "{}: internal error in the generated façade program: {}",
+            path.display(),
+            e.render("gothic.vsg", &src).trim_end()
+        )
+    })?;
+    vsg::export::to_glb(&model, &vsg::export::ExportOptions::default())
+        .with_context(|| format!("cannot export {}", path.display()))
 }
 
 /// TRAINING.json (as `castellan facade --training` reads it), checked against the image: window

@@ -1,7 +1,6 @@
 //! `castellan`: the command-line front end. It parses arguments, reads inputs, calls the
 //! library crates and writes outputs atomically; the work itself lives in the libraries.
 
-mod batch_cmd;
 mod cli;
 mod corners_cmd;
 mod demo_cmd;
@@ -12,6 +11,7 @@ mod fuzz_tests;
 mod gothic_cmd;
 mod images;
 mod output;
+mod plan_batch;
 mod plan_cmd;
 mod progress;
 mod reconstruct_cmd;

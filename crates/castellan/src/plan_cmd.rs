@@ -25,7 +25,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     };
     let image = match (&args.batch, &args.image) {
         (Some(dir), _) => {
-            return crate::batch_cmd::run(dir, &args.output, args.metres_per_pixel, &options);
+            return crate::plan_batch::run(dir, &args.output, args.metres_per_pixel, &options);
         }
         (None, Some(image)) => image,
         (None, None) => return Err(anyhow!("give a plan drawing or --batch DIR")),
