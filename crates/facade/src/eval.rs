@@ -154,7 +154,7 @@ pub fn simulate_user_inside(
         let s = side as f64;
         let boxes: Vec<[f64; 4]> = chosen.iter().map(|&(x, y)| [x, y, x + s, y + s]).collect();
         if !boxes.is_empty() {
-            classes.insert(class.name().to_string(), boxes);
+            classes.insert(class, boxes);
         }
     }
     Ok(Training { classes })
@@ -179,11 +179,11 @@ mod tests {
         let (w, h) = (20, 10);
         let truth: Vec<u8> = (0..w * h).map(|i| if i % w < 10 { 1 } else { 2 }).collect();
         let t = simulate_user(&truth, w, h, 3, 3, 1).unwrap();
-        assert!(!t.classes.contains_key("background"));
-        for b in &t.classes["window"] {
+        assert!(!t.classes.contains_key(&Class::Background));
+        for b in &t.classes[&Class::Window] {
             assert!(b[0] >= 10.0 && b[2] <= 20.0);
         }
-        assert_eq!(t.classes["wall"].len(), 3);
+        assert_eq!(t.classes[&Class::Wall].len(), 3);
     }
 
     #[test]
@@ -196,14 +196,14 @@ mod tests {
             .map(|i| if (10..30).contains(&(i % w)) { 2 } else { 1 })
             .collect();
         let t = simulate_user_inside(&truth, w, h, 3, 4, 5, 1).unwrap();
-        for b in &t.classes["window"] {
+        for b in &t.classes[&Class::Window] {
             assert!(
                 b[0] >= 15.0 && b[2] <= 25.0 && b[1] >= 5.0 && b[3] <= 15.0,
                 "{b:?}"
             );
         }
-        assert_eq!(t.classes["wall"].len(), 3);
-        for b in &t.classes["wall"] {
+        assert_eq!(t.classes[&Class::Wall].len(), 3);
+        for b in &t.classes[&Class::Wall] {
             assert!(b[2] <= 10.0 || b[0] >= 30.0, "{b:?}");
         }
     }

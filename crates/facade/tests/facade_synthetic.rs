@@ -53,10 +53,10 @@ fn recovers_facade_floors_and_windows() {
     };
     training
         .classes
-        .insert("window".into(), vec![win(0), win(7), win(13)]);
+        .insert(Class::Window, vec![win(0), win(7), win(13)]);
     // Wall: beside a window, at the façade's left margin, between two floors.
     training.classes.insert(
-        "wall".into(),
+        Class::Wall,
         vec![
             [56.0, 50.0, 66.0, 60.0],
             [25.0, 90.0, 31.0, 100.0],
@@ -65,7 +65,7 @@ fn recovers_facade_floors_and_windows() {
     );
     let f = s.facade.map(|v| v as f64);
     training.classes.insert(
-        "background".into(),
+        Class::Background,
         vec![
             [5.0, 5.0, 235.0, f[1] - 5.0],
             [5.0, f[3] + 2.0, 235.0, 178.0],
@@ -109,7 +109,7 @@ fn without_background_boxes_the_image_is_one_facade() {
     let s = common::facade(160, 120, 3, 3, 5);
     let truth = truth_labels(&s);
     let mut training = simulate_user(&truth, 160, 120, 2, 4, 3).unwrap();
-    training.classes.remove("background");
+    training.classes.remove(&Class::Background);
     let ll = classify(&s.img, &training, &params()).unwrap();
     let model = parse(&s.img, &ll, &SearchParams::default()).unwrap();
     assert_eq!(model.facades.len(), 1);

@@ -126,7 +126,7 @@ fn the_window_class_finds_every_window_within_three_pixels() {
 fn training_without_a_window_class_is_an_error() {
     let (img, truth, _) = photographed_facade(3);
     let mut t = training(&truth);
-    t.classes.remove("window");
+    t.classes.remove(&facade::classify::Class::Window);
     let e = estimate_with_classes(
         &img,
         &t,

@@ -3,7 +3,7 @@
 //! search (§3.1.5–3.1.7). Boxes and points are given in the photo's pixels and mapped through
 //! the rectifying homography, so a project stays valid if rectification is re-run.
 
-use facade::classify::{ClassifyParams, LogLikelihoods, Training, classify};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
 use facade::model::FacadeModel;
 use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
 use facade::search::{SearchParams, parse};
@@ -172,7 +172,7 @@ fn inside(t: &Training, origin: [f64; 2], size: (u32, u32)) -> Training {
     let classes = t
         .classes
         .iter()
-        .filter(|(name, _)| name.as_str() != "background")
+        .filter(|(class, _)| **class != Class::Background)
         .map(|(name, boxes)| {
             let moved = boxes
                 .iter()
@@ -186,7 +186,7 @@ fn inside(t: &Training, origin: [f64; 2], size: (u32, u32)) -> Training {
                 })
                 .filter(|b| b[2] > b[0] && b[3] > b[1])
                 .collect();
-            (name.clone(), moved)
+            (*name, moved)
         })
         .collect();
     Training { classes }
@@ -200,7 +200,7 @@ pub fn map_training(t: &Training, h: &Matrix3<f64>) -> Training {
         .iter()
         .map(|(name, boxes)| {
             let mapped = boxes.iter().map(|b| map_box(b, h).unwrap_or(*b)).collect();
-            (name.clone(), mapped)
+            (*name, mapped)
         })
         .collect();
     Training { classes }

@@ -2,7 +2,7 @@
 //! wall with two round towers and a free-standing keep) and perspective photos of the keep's
 //! south façade at any scale, with the user's training boxes and correspondence points.
 
-use facade::classify::Training;
+use facade::classify::{Class, Training};
 use image::{GrayImage, Luma, Rgb, RgbImage};
 use nalgebra::{Matrix3, Vector3};
 use rand::{RngExt, SeedableRng};
@@ -259,7 +259,7 @@ impl Castle {
         ];
         let mut classes = std::collections::BTreeMap::new();
         classes.insert(
-            "window".to_string(),
+            Class::Window,
             vec![
                 bounding(win(0.0, 0.0)),
                 bounding(win(2.0, 1.0)),
@@ -267,17 +267,14 @@ impl Castle {
             ],
         );
         classes.insert(
-            "wall".to_string(),
+            Class::Wall,
             vec![
                 bounding(wall(0.0)),
                 bounding(wall(1.0)),
                 bounding(wall(2.0)),
             ],
         );
-        classes.insert(
-            "background".to_string(),
-            vec![bounding(sky), bounding(grass)],
-        );
+        classes.insert(Class::Background, vec![bounding(sky), bounding(grass)]);
         let point = map(&hm, (rect[0] + rect[2]) / 2.0, (rect[1] + rect[3]) / 2.0);
         Photo {
             image,
@@ -308,13 +305,13 @@ mod tests {
         let photo = c.photo(20.0, 0.0, 1);
         let (elev, _) = c.elevation(20.0, 1);
         assert_eq!(photo.image.dimensions(), elev.dimensions());
-        for b in &photo.training.classes["window"] {
+        for b in &photo.training.classes[&Class::Window] {
             let p = photo
                 .image
                 .get_pixel(((b[0] + b[2]) / 2.0) as u32, ((b[1] + b[3]) / 2.0) as u32);
             assert!(p[0] < 80, "{b:?} {p:?}");
         }
-        for b in &photo.training.classes["wall"] {
+        for b in &photo.training.classes[&Class::Wall] {
             let p = photo
                 .image
                 .get_pixel(((b[0] + b[2]) / 2.0) as u32, ((b[1] + b[3]) / 2.0) as u32);

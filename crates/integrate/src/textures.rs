@@ -79,7 +79,7 @@ pub fn wall_samples(estimate: &Estimate, photos: &[FacadeEstimate]) -> (Vec<Text
         for (k, b) in p
             .training
             .classes
-            .get("wall")
+            .get(&facade::classify::Class::Wall)
             .into_iter()
             .flatten()
             .enumerate()
