@@ -230,14 +230,7 @@ fn parse_assignment(s: &str) -> Result<(String, f64), String> {
     {
         return Err(format!("'{name}' is not a variable name"));
     }
-    let v: f64 = value
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{value}' is not a number"))?;
-    if !v.is_finite() {
-        return Err(format!("'{value}' is not a finite number"));
-    }
-    Ok((name.to_string(), v))
+    Ok((name.to_string(), crate::flags::finite(value)?))
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

@@ -6,12 +6,14 @@
 //! one (a wrong label, side, unit or unknown key), so it has teeth. Each command runs once,
 //! shared by the tests that read its outputs.
 
+mod fixtures;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use assert_cmd::Command;
-use image::{Rgb, RgbImage};
+
 use jsonschema::{Registry, Resource, Validator};
 use serde_json::{Value, json};
 
@@ -280,28 +282,6 @@ fn coucy_plan() -> &'static Value {
     })
 }
 
-/// A rectified wall with two floors of three dark windows under a strip of sky (as in
-/// tests/rectify_facade.rs).
-fn facade_image() -> RgbImage {
-    let mut img = RgbImage::from_pixel(120, 90, Rgb([150, 190, 235]));
-    for y in 15..90 {
-        for x in 0..120 {
-            let n = ((x * 7 + y * 13) % 9) as u8;
-            img.put_pixel(x, y, Rgb([180 + n, 130 + n, 95]));
-        }
-    }
-    for f in 0..2 {
-        for k in 0..3 {
-            for y in 25 + 35 * f..45 + 35 * f {
-                for x in 12 + 38 * k..32 + 38 * k {
-                    img.put_pixel(x, y, Rgb([35, 45, 65]));
-                }
-            }
-        }
-    }
-    img
-}
-
 /// The training boxes the façade run uses (in [`facade_image`]'s pixels).
 const FACADE_TRAINING: &str = r#"{"classes": {"window": [[14, 27, 30, 43], [52, 62, 68, 78]], "wall": [[2, 50, 10, 58], [40, 17, 100, 23]], "background": [[5, 2, 115, 12]]}}"#;
 
@@ -315,7 +295,7 @@ fn facade() -> &'static Value {
             dir.path().join("t.json"),
             dir.path().join("facade.json"),
         );
-        facade_image().save(&img).unwrap();
+        fixtures::facade_image().save(&img).unwrap();
         std::fs::write(&training, FACADE_TRAINING).unwrap();
         castellan()
             .arg("facade")
@@ -334,19 +314,11 @@ fn facade() -> &'static Value {
 /// pointed windows under an enclosing arch, as in tests/gothic_cli.rs): elements, a group,
 /// nesting and stones.
 fn gothic() -> &'static Value {
-    use facade::gothic::synth::{Bay, SynthSpec, synthetic_facade};
+    use facade::gothic::synth::synthetic_facade;
     static RUN: OnceLock<Value> = OnceLock::new();
     RUN.get_or_init(|| {
         let dir = tempfile::tempdir().unwrap();
-        let spec = SynthSpec {
-            width: 300,
-            height: 400,
-            bays: vec![Bay {
-                windows: 2,
-                pointed: true,
-            }],
-            ..SynthSpec::small()
-        };
+        let spec = fixtures::gothic_bay();
         let (img, out) = (dir.path().join("g.png"), dir.path().join("gothic.json"));
         synthetic_facade(&spec, 4).image.save(&img).unwrap();
         castellan()
@@ -489,7 +461,7 @@ fn shipped_training_and_lines_files_follow_their_schemas() {
 fn lines_json_the_binary_accepts_follows_the_schema_and_one_it_refuses_breaks_it() {
     let dir = tempfile::tempdir().unwrap();
     let img = dir.path().join("photo.png");
-    facade_image().save(&img).unwrap();
+    fixtures::facade_image().save(&img).unwrap();
     let good = json!({
         "horizontal": [[10, 20, 110, 25], [10, 70, 110, 68]],
         "vertical": [[20, 10, 22, 80], [100, 10, 98, 80]]

@@ -1,8 +1,10 @@
 //! `castellan gothic` as a user runs it: every output on a synthetic Gothic façade, an empty
 //! result on a blank wall, and one clear message naming the file (and no output) on bad input.
 
+mod fixtures;
+
 use assert_cmd::Command;
-use facade::gothic::synth::{Bay, SynthSpec, synthetic_facade};
+use facade::gothic::synth::synthetic_facade;
 use image::{Rgb, RgbImage};
 
 fn castellan() -> Command {
@@ -12,15 +14,7 @@ fn castellan() -> Command {
 #[test]
 fn gothic_writes_json_masonry_overlay_and_model() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = SynthSpec {
-        width: 300,
-        height: 400,
-        bays: vec![Bay {
-            windows: 2,
-            pointed: true,
-        }],
-        ..SynthSpec::small()
-    };
+    let spec = fixtures::gothic_bay();
     let img = dir.path().join("facade.png");
     synthetic_facade(&spec, 4).image.save(&img).unwrap();
     let (json, masonry, overlay, model) = (

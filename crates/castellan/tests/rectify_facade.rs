@@ -1,6 +1,8 @@
 //! `castellan rectify` and `castellan facade` as a user runs them: outputs on success, one
 //! clear message naming the file and no output on failure.
 
+mod fixtures;
+
 use assert_cmd::Command;
 use image::{Rgb, RgbImage};
 
@@ -8,32 +10,11 @@ fn castellan() -> Command {
     Command::cargo_bin("castellan").unwrap()
 }
 
-/// A wall with two floors of three dark windows, sky above.
-fn facade_image() -> RgbImage {
-    let mut img = RgbImage::from_pixel(120, 90, Rgb([150, 190, 235]));
-    for y in 15..90 {
-        for x in 0..120 {
-            let n = ((x * 7 + y * 13) % 9) as u8;
-            img.put_pixel(x, y, Rgb([180 + n, 130 + n, 95]));
-        }
-    }
-    for f in 0..2 {
-        for k in 0..3 {
-            for y in 25 + 35 * f..45 + 35 * f {
-                for x in 12 + 38 * k..32 + 38 * k {
-                    img.put_pixel(x, y, Rgb([35, 45, 65]));
-                }
-            }
-        }
-    }
-    img
-}
-
 #[test]
 fn rectify_with_manual_lines_writes_every_output() {
     let dir = tempfile::tempdir().unwrap();
     let img_path = dir.path().join("photo.png");
-    facade_image().save(&img_path).unwrap();
+    fixtures::facade_image().save(&img_path).unwrap();
     let lines = dir.path().join("lines.json");
     std::fs::write(
         &lines,
@@ -97,7 +78,7 @@ fn rectify_of_a_single_colour_image_fails_cleanly() {
 fn facade_writes_the_model_labels_and_overlay() {
     let dir = tempfile::tempdir().unwrap();
     let img_path = dir.path().join("f.png");
-    facade_image().save(&img_path).unwrap();
+    fixtures::facade_image().save(&img_path).unwrap();
     let training = dir.path().join("t.json");
     std::fs::write(
         &training,
@@ -138,7 +119,7 @@ fn facade_writes_the_model_labels_and_overlay() {
 fn facade_rejects_boxes_outside_the_image() {
     let dir = tempfile::tempdir().unwrap();
     let img_path = dir.path().join("f.png");
-    facade_image().save(&img_path).unwrap();
+    fixtures::facade_image().save(&img_path).unwrap();
     let training = dir.path().join("bad.json");
     std::fs::write(
         &training,
