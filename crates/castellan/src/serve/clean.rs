@@ -1,6 +1,7 @@
 //! Plan cleaning in `castellan serve` (§5.1.1, painted by `plan::clean`): the HTTP handlers, and
 //! the cleaned drawing saved as `STEM.cleaned.png`, which PROJECT.toml's `plan` names, beside
-//! plan_cleaning.json (the original and every stroke).
+//! plan_cleaning.json (the original and every stroke; read by app.rs's `load_cleaning`, which
+//! the project's handler shares).
 
 use std::sync::Arc;
 
@@ -9,48 +10,16 @@ use axum::extract::State;
 use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use image::GrayImage;
-use integrate::project::Project;
+use integrate::textures::safe_stem;
 use plan::clean::{Cleaning, Strokes, binary_drawing, check, paint};
 use serde_json::json;
 
-use super::api::{
-    ApiError, App, Saved, blocking, check_version, err, file_url, if_match, versioned,
+use super::app::{
+    ApiError, App, Saved, blocking, check_version, err, file_url, if_match, load_cleaning,
+    versioned,
 };
+use super::store::CLEANING_FILE;
 use crate::images::{png, read_image};
-use integrate::textures::safe_stem as stem;
-
-/// Remembers the uploaded drawing and the strokes, so the user can undo any of them: the
-/// cleaned image is always the original's binary image with every stroke painted again.
-pub const CLEANING_FILE: &str = "plan_cleaning.json";
-
-/// The saved cleaning, or none yet: the project's plan is then the original.
-pub fn load(app: &App, p: &Project) -> Result<Cleaning, ApiError> {
-    match app
-        .store
-        .existing(CLEANING_FILE)
-        .map_err(err(StatusCode::CONFLICT))?
-    {
-        None => Ok(Cleaning {
-            original: p.plan.clone(),
-            strokes: vec![],
-        }),
-        Some(path) => {
-            crate::text::read_json(&path, "a plan_cleaning.json").map_err(err(StatusCode::CONFLICT))
-        }
-    }
-}
-
-/// plan_cleaning.json for a newly uploaded drawing: nothing painted yet.
-pub fn fresh(original: &str) -> (String, Vec<u8>) {
-    let c = Cleaning {
-        original: original.to_string(),
-        strokes: vec![],
-    };
-    (
-        CLEANING_FILE.to_string(),
-        serde_json::to_vec_pretty(&c).unwrap_or_default(),
-    )
-}
 
 fn original_binary(app: &App, cleaning: &Cleaning) -> Result<GrayImage, ApiError> {
     let path = app
@@ -65,7 +34,7 @@ fn original_binary(app: &App, cleaning: &Cleaning) -> Result<GrayImage, ApiError
 pub async fn binary(State(app): State<Arc<App>>) -> Result<Response, ApiError> {
     let bytes = blocking(app, "plan binary", |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
-        let cleaning = load(app, &p)?;
+        let cleaning = load_cleaning(app, &p)?;
         let img = original_binary(app, &cleaning)?;
         png(&img, std::path::Path::new("binary plan"))
             .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
@@ -85,7 +54,7 @@ pub async fn save(
     blocking(app, "plan cleaning", move |app| {
         let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         check_version(&app.store, if_match.as_deref())?;
-        let mut cleaning = load(app, &p)?;
+        let mut cleaning = load_cleaning(app, &p)?;
         let mut img = original_binary(app, &cleaning)?;
         check(&body.strokes, img.width(), img.height())
             .map_err(|m| ApiError(StatusCode::BAD_REQUEST, format!("plan cleaning: {m}")))?;
@@ -95,7 +64,7 @@ pub async fn save(
         if cleaning.strokes.is_empty() {
             p.plan = cleaning.original.clone();
         } else {
-            p.plan = format!("{}.cleaned.png", stem(&cleaning.original));
+            p.plan = format!("{}.cleaned.png", safe_stem(&cleaning.original));
             let bytes = png(&img, std::path::Path::new(&p.plan))
                 .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
             files.push((p.plan.clone(), bytes));

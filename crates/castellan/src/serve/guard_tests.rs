@@ -42,7 +42,7 @@ async fn a_cross_origin_upload_is_refused() {
         req.headers_mut().insert("host", HOST.parse().unwrap());
         if let Some(t) = token {
             req.headers_mut()
-                .insert(super::guard::TOKEN_HEADER, t.parse().unwrap());
+                .insert(super::access::TOKEN_HEADER, t.parse().unwrap());
         }
         let (s, b) = send_as_is(&app, req).await;
         assert_eq!(s, StatusCode::FORBIDDEN);
@@ -124,7 +124,7 @@ async fn a_request_without_the_right_token_is_refused() {
                 .header("host", HOST)
                 .header("content-type", "application/json");
             if let Some(t) = token {
-                req = req.header(super::guard::TOKEN_HEADER, t);
+                req = req.header(super::access::TOKEN_HEADER, t);
             }
             let (s, b) = send_as_is(&app, req.body(Body::from("[]")).unwrap()).await;
             assert_eq!(s, StatusCode::FORBIDDEN, "{method} {uri} {token:?}");
@@ -186,7 +186,7 @@ async fn etag(app: &axum::Router) -> String {
         app.clone(),
         Request::get("/api/project")
             .header("host", HOST)
-            .header(super::guard::TOKEN_HEADER, TOKEN)
+            .header(super::access::TOKEN_HEADER, TOKEN)
             .body(Body::empty())
             .unwrap(),
     )
@@ -234,7 +234,7 @@ async fn a_stale_if_match_is_refused_with_412() {
         app.clone(),
         Request::put(training)
             .header("host", HOST)
-            .header(super::guard::TOKEN_HEADER, TOKEN)
+            .header(super::access::TOKEN_HEADER, TOKEN)
             .header("content-type", "application/json")
             .header("if-match", etag(&app).await)
             .body(Body::from(boxes))
@@ -494,7 +494,7 @@ async fn a_body_that_never_arrives_is_cut_off() {
         HOST.parse().unwrap(),
         std::time::Duration::from_millis(300),
     );
-    let app = super::router(super::api::App::new(
+    let app = super::router(super::app::App::new(
         super::store::Store::open(dir.path()).unwrap(),
         1 << 20,
         access,

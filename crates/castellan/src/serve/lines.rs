@@ -9,13 +9,13 @@ use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::{HeaderMap, StatusCode};
 use facade::rectify::ManualLines;
+use integrate::textures::safe_stem;
 use serde_json::{Value, json};
 
-use super::api::{
+use super::app::{
     ApiError, App, Saved, blocking, check_version, err, facade_for_edit, file_url, find_facade,
     if_match, versioned,
 };
-use integrate::textures::safe_stem as stem;
 
 /// PUT /api/facades/{name}/lines: saves LINES.json and points the façade at it.
 pub async fn save(
@@ -34,7 +34,7 @@ pub async fn save(
         let file = f
             .lines
             .clone()
-            .unwrap_or_else(|| format!("{}.lines.json", stem(&f.image)));
+            .unwrap_or_else(|| format!("{}.lines.json", safe_stem(&f.image)));
         for g in p.facades.iter_mut().filter(|g| g.image == name) {
             g.lines = Some(file.clone());
         }

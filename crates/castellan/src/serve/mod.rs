@@ -3,7 +3,8 @@
 //! correspondences §6.1.1) as a local
 //! web app — an HTTP API over one project folder and a page embedded in the binary.
 
-mod api;
+mod access;
+mod app;
 mod clean;
 mod conn;
 #[cfg(test)]
@@ -14,6 +15,7 @@ mod guard;
 #[cfg(test)]
 mod guard_tests;
 mod lines;
+mod project;
 mod stages;
 mod store;
 #[cfg(test)]
@@ -32,7 +34,7 @@ use axum::response::IntoResponse;
 use axum::routing::{get, post, put};
 use clap::Args;
 
-pub use guard::Access;
+pub use access::Access;
 
 /// `castellan serve` flags.
 #[derive(Debug, Args)]
@@ -87,7 +89,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
         let access = Access::new(token, addr, Duration::from_secs(args.body_timeout_secs));
         let url = format!("http://{addr}/?token={}", access.token);
         // The flag's range keeps the shift in bounds (4096 MiB = 2^32 bytes).
-        let app = router(api::App::new(
+        let app = router(app::App::new(
             store,
             (args.max_upload_mb as usize) << 20,
             access,
@@ -112,7 +114,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
     })
 }
 
-pub fn router(app: Arc<api::App>) -> Router {
+pub fn router(app: Arc<app::App>) -> Router {
     let limit = app.max_upload;
     Router::new()
         .route(
@@ -124,9 +126,9 @@ pub fn router(app: Arc<api::App>) -> Router {
             "/app.js",
             get(|| async { asset("text/javascript", APP_JS) }),
         )
-        .route("/api/project", get(api::project))
-        .route("/api/progress", get(api::progress))
-        .route("/api/upload", post(api::upload))
+        .route("/api/project", get(project::project))
+        .route("/api/progress", get(project::progress))
+        .route("/api/upload", post(project::upload))
         .route("/api/plan", post(stages::plan))
         .route("/api/plan/binary", get(clean::binary))
         .route("/api/plan/cleaning", put(clean::save))
@@ -139,7 +141,7 @@ pub fn router(app: Arc<api::App>) -> Router {
         .route("/api/facades/{name}/facade", post(stages::facade_stage))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))
-        .route("/files/{*path}", get(api::file))
+        .route("/files/{*path}", get(project::file))
         .layer(DefaultBodyLimit::max(limit))
         .layer(axum::middleware::from_fn_with_state(
             app.clone(),

@@ -1,4 +1,4 @@
-//! The HTTP API of `castellan serve`, part 2: each pipeline stage with its overlay — plan
+//! The pipeline's handlers in `castellan serve`: each stage with its overlay — plan
 //! (ch. 5), rectification (§3.1.1), façade search (§3.1.2–3.1.7) — the user's training boxes and
 //! correspondences (§6.1.1) saved to the project, and the whole reconstruction (ch. 6–7).
 
@@ -12,14 +12,15 @@ use facade::classify::Training;
 use facade::rectify::ManualLines;
 use integrate::pipeline;
 use integrate::project::{Correspondence, FacadeEntry, TrainingSource};
+use integrate::textures::safe_stem;
 use serde_json::{Value, json};
 
-use super::api::{
+use super::app::{
     ApiError, App, Reply, Saved, blocking, check_version, err, facade_for_edit, facade_index,
-    file_url, find_facade, if_match, versioned,
+    file_url, find_facade, if_match, outputs, versioned,
 };
+use super::store::PROJECT_FILE;
 use crate::images::{png, read_image};
-use integrate::textures::safe_stem as stem;
 
 /// The façade's LINES.json (user-set rectification segments), if it names one.
 fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiError> {
@@ -106,7 +107,7 @@ pub async fn rectify(State(app): State<Arc<App>>, Path(name): Path<String>) -> R
                 format!("{name}: rectification gave no homography"),
             ));
         };
-        let s = stem(&f.image);
+        let s = safe_stem(&f.image);
         let (overlay, rectified) = (
             format!("out/overlays/{s}_lines.png"),
             format!("out/{s}_rectified.png"),
@@ -145,7 +146,7 @@ pub async fn training(
             .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("{name}: {e}")))?;
         let file = match &f.training {
             TrainingSource::File(file) => file.clone(),
-            TrainingSource::Inline(_) => format!("{}.training.json", stem(&f.image)),
+            TrainingSource::Inline(_) => format!("{}.training.json", safe_stem(&f.image)),
         };
         for g in p.facades.iter_mut().filter(|g| g.image == name) {
             g.training = TrainingSource::File(file.clone());
@@ -213,20 +214,12 @@ pub async fn correspondences(
     .await
 }
 
-pub(super) fn outputs() -> Value {
-    json!({
-        "report": file_url("out/index.html"), "glb": file_url("out/model.glb"),
-        "obj": file_url("out/model.obj"), "vsg": file_url("out/model.vsg"),
-        "json": file_url("out/estimate.json"), "stats": file_url("out/stats.json"),
-    })
-}
-
 /// POST /api/reconstruct: `castellan reconstruct PROJECT.toml -o out`.
 pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "reconstruct", |app| {
         app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let s = crate::reconstruction::reconstruct(
-            &app.store.dir.join(super::store::PROJECT_FILE),
+            &app.store.dir.join(PROJECT_FILE),
             &app.store.dir.join("out"),
             None,
         )

@@ -14,6 +14,11 @@ use crate::output::Outputs;
 
 pub const PROJECT_FILE: &str = "PROJECT.toml";
 
+/// The plan cleaning (clean.rs): remembers the uploaded drawing and the strokes, so the user can
+/// undo any of them: the cleaned image is always the original's binary image with every stroke
+/// painted again. Part of the project's version.
+pub const CLEANING_FILE: &str = "plan_cleaning.json";
+
 /// One served project directory.
 pub struct Store {
     /// Canonical, so a resolved file can be checked to lie inside it.
@@ -99,7 +104,7 @@ impl Store {
             bytes.hash(&mut h);
         };
         add(PROJECT_FILE);
-        add(super::clean::CLEANING_FILE);
+        add(CLEANING_FILE);
         if let Ok(Some(p)) = self.load() {
             for f in &p.facades {
                 if let TrainingSource::File(t) = &f.training {

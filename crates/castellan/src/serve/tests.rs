@@ -9,7 +9,7 @@ use http_body_util::BodyExt;
 use serde_json::Value;
 use tower::ServiceExt;
 
-use super::{api, router, store};
+use super::{app, router, store};
 
 pub(super) fn demo_project() -> tempfile::TempDir {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
@@ -36,7 +36,7 @@ pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
         HOST.parse().unwrap(),
         std::time::Duration::from_secs(5),
     );
-    router(api::App::new(
+    router(app::App::new(
         store::Store::open(dir).unwrap(),
         max_upload,
         access,
@@ -47,7 +47,7 @@ pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
 pub(super) async fn send(app: &axum::Router, mut req: Request<Body>) -> (StatusCode, Vec<u8>) {
     let h = req.headers_mut();
     h.entry("host").or_insert(HOST.parse().unwrap());
-    h.entry(super::guard::TOKEN_HEADER)
+    h.entry(super::access::TOKEN_HEADER)
         .or_insert(TOKEN.parse().unwrap());
     send_as_is(app, req).await
 }
