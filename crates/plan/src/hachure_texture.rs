@@ -3,10 +3,10 @@
 //! fills, so the band turns into a solid wall; the stroke test never sees its strokes.
 
 use image::{GrayImage, Rgb, RgbImage};
-use imageproc::distance_transform::{Norm, distance_transform};
 use imageproc::integral_image::{integral_image, sum_image_pixels};
+use raster::morphology::{Norm, distance_to_background};
 
-use crate::binarize::{Connectivity, components};
+use raster::components::{Connectivity, components};
 
 /// Removes ink where paper specks are dense: an ink pixel goes when, in the square of
 /// half-side `window` around it, at least `min_speck_share` of the pixels are specks (enclosed
@@ -43,10 +43,7 @@ pub fn drop_hachure_texture(
                 && (b[3] as usize) + 1 < h
         })
         .collect();
-    let paper_image = GrayImage::from_fn(img.width(), img.height(), |x, y| {
-        image::Luma([255 - img.get_pixel(x, y)[0]])
-    });
-    let to_paper = distance_transform(&paper_image, Norm::LInf);
+    let to_paper = distance_to_background(img, Norm::LInf);
     // Per pixel, as the three channels of one integral image: a speck pixel, the mark of a
     // speck (its first pixel in raster order, so a window counts distinct specks), solid ink.
     let mut seen = vec![false; paper.sizes.len()];

@@ -83,6 +83,7 @@ pub fn check_range(
     }
 }
 use imageproc::distance_transform::{Norm, distance_transform};
+use raster::morphology::distance_to_background;
 
 use crate::fit::Fit;
 use crate::graph::Vertex;
@@ -405,16 +406,10 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
     let (face_of, nf) = graph::faces(&skel);
     let (g, _) = full.simplify();
 
-    // Distances: inside walls to the open space, and inside open space to the walls.
-    let open_fg = image::GrayImage::from_fn(w, h, |x, y| {
-        image::Luma([if bin.get_pixel(x, y)[0] == 255 {
-            0
-        } else {
-            255
-        }])
-    });
+    // Distances: inside walls to the open space, and inside open space to the walls (`bin`
+    // is 0 or 255 only).
     let (in_wall, in_open) = rayon::join(
-        || distance_transform(&open_fg, Norm::L2),
+        || distance_to_background(&bin, Norm::L2),
         || distance_transform(&bin, Norm::L2),
     );
 

@@ -2,7 +2,7 @@
 //! their neighbours: shared by the clean-up steps added to §5.1.2 that recognise patterns of
 //! strokes ([`crate::hachures`], [`crate::dashes`]).
 
-use crate::binarize::Components;
+use raster::components::Components;
 
 /// A region seen as a bar: centroid, direction of its long axis, length and width.
 #[derive(Debug, Clone, Copy)]
@@ -141,7 +141,7 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::binarize::{Connectivity, components};
+    use raster::components::{Connectivity, components};
     use image::{GrayImage, Luma};
 
     #[test]

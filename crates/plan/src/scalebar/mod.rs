@@ -6,7 +6,9 @@
 use image::GrayImage;
 use serde::Serialize;
 
-use crate::binarize::{Connectivity, binarize, components, threshold_level};
+use raster::components::{Connectivity, components};
+
+use crate::binarize::{binarize, threshold_level};
 
 pub mod eval;
 mod scan;
