@@ -4,9 +4,8 @@
 
 use image::{GrayImage, Rgb, RgbImage};
 use imageproc::integral_image::{integral_image, sum_image_pixels};
-use raster::morphology::{Norm, distance_to_background};
-
 use raster::components::{Connectivity, components};
+use raster::morphology::{Norm, distance_to_background};
 
 /// Removes ink where paper specks are dense: an ink pixel goes when, in the square of
 /// half-side `window` around it, at least `min_speck_share` of the pixels are specks (enclosed

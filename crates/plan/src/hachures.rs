@@ -6,9 +6,9 @@
 
 use image::GrayImage;
 use imageproc::distance_transform::{Norm, distance_transform};
+use raster::components::{Connectivity, components};
 use raster::morphology::top_hat;
 
-use raster::components::{Connectivity, components};
 use crate::strokes::{Grid, Stroke, angle_between, strokes};
 
 /// Strokes of one band differ in direction by at most this (radians): radial hachures turn

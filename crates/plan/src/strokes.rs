@@ -141,8 +141,8 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raster::components::{Connectivity, components};
     use image::{GrayImage, Luma};
+    use raster::components::{Connectivity, components};
 
     #[test]
     fn a_diagonal_bar_has_its_length_width_and_direction() {
