@@ -25,12 +25,12 @@ pub struct PreStats {
     pub dropped_marks: usize,
     /// Ink pixels removed as thin lines (vault ribs, hachures; [`drop_thin_lines`]).
     pub thin_line_pixels: usize,
-    /// Paper pixels filled between hatch strokes ([`crate::hatching::fill_hatching`]).
+    /// Paper pixels filled between hatch strokes ([`crate::hatched_walls::fill_hatching`]).
     pub hatching_pixels: usize,
     /// With hatching off: the share of the sheet in diagonal hatch patterns
-    /// ([`crate::hatching::hatch_share`]), for the hint that the walls may be hatched.
+    /// ([`crate::hatched_walls::hatch_share`]), for the hint that the walls may be hatched.
     pub hatch_share: f64,
-    /// Ink pixels removed as hachures ([`crate::hachures::drop_hachures`]).
+    /// Ink pixels removed as hachures ([`crate::hachure_bands::drop_hachures`]).
     pub hachure_pixels: usize,
     /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
     pub dash_links: usize,
@@ -43,9 +43,9 @@ pub struct PreStats {
 pub struct Cleanup {
     /// Fraction of the wall thickness below which vault ribs go ([`drop_thin_lines`]; 0 = off).
     pub thin_lines: f64,
-    /// Fill the paper between hatch strokes ([`crate::hatching::fill_hatching`]).
+    /// Fill the paper between hatch strokes ([`crate::hatched_walls::fill_hatching`]).
     pub hatching: bool,
-    /// Remove bands of hachures ([`crate::hachures::drop_hachures`]).
+    /// Remove bands of hachures ([`crate::hachure_bands::drop_hachures`]).
     pub hachures: bool,
     /// Join dotted and dashed lines ([`crate::dashes::link_dashes`]).
     pub dashes: bool,
@@ -128,23 +128,23 @@ pub fn preprocess_clean(
     } else {
         0.0
     };
-    let params = crate::hatching::HatchParams::for_sheet(long);
+    let params = crate::hatched_walls::HatchParams::for_sheet(long);
     if cleanup.hatching {
-        stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, &params);
+        stats.hatching_pixels = crate::hatched_walls::fill_hatching(&mut img, &params);
     } else {
-        stats.hatch_share = crate::hatching::hatch_share(&img, &params);
+        stats.hatch_share = crate::hatched_walls::hatch_share(&img, &params);
     }
     if cleanup.hachures {
         let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;
         stats.hachure_pixels =
-            crate::hachures::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
+            crate::hachure_bands::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
         // The specks step (2) would fill are what turn a band of merged hachures solid. A
         // share of 0.175 (tried 0.15, 0.175, 0.2, 0.25 on the dev set, docs/plan.md) keeps the
         // exact tower counts; at 0.15 densely hatched walls (Avignon 353) go too.
         let window = (1.5 * t).round().max(4.0) as u32;
         let core = t.ceil().clamp(3.0, 255.0) as u8;
         stats.hachure_pixels +=
-            crate::hachure_texture::drop_hachure_texture(&mut img, window, core, min, 0.175, 4);
+            crate::hachure_blobs::drop_hachure_blobs(&mut img, window, core, min, 0.175, 4);
     }
     if cleanup.dashes {
         stats.dash_links =

@@ -1,6 +1,6 @@
 //! Shape of small regions (strokes of ink) from their second moments, and a grid to find
 //! their neighbours: shared by the clean-up steps added to §5.1.2 that recognise patterns of
-//! strokes ([`crate::hachures`], [`crate::dashes`]).
+//! strokes ([`crate::hachure_bands`], [`crate::dashes`]).
 
 use raster::components::Components;
 

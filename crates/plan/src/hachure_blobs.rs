@@ -1,6 +1,7 @@
-//! Dense hachures that touch each other (Langres): an addition to §5.1.2 beside
-//! [`crate::hachures`]. Such a band is one ink blob riddled with specks of paper, which step (2)
-//! fills, so the band turns into a solid wall; the stroke test never sees its strokes.
+//! Blobs of merged hachures removed: dense hachures that touch each other (Langres), an
+//! addition to §5.1.2 beside [`crate::hachure_bands`]. Such a band is one ink blob riddled with
+//! specks of paper, which step (2) fills, so the band turns into a solid wall; the stroke test
+//! never sees its strokes.
 
 use image::{GrayImage, Rgb, RgbImage};
 use imageproc::integral_image::{integral_image, sum_image_pixels};
@@ -15,7 +16,7 @@ use raster::morphology::{Norm, distance_to_background};
 /// merged hachures is all specks between strokes. Solid ink, `core` pixels or more from the
 /// paper and specks, and the window around it stay: a black tower round a spiral stair
 /// (Narbonne) or a densely hatched wall is not a band. Returns the pixels removed.
-pub fn drop_hachure_texture(
+pub fn drop_hachure_blobs(
     img: &mut GrayImage,
     window: u32,
     core: u8,
@@ -114,7 +115,7 @@ mod tests {
     fn merged_hachures_go_walls_and_partitions_stay() {
         let mut img = room_wall_and_band();
         let before = img.clone();
-        let removed = drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4);
+        let removed = drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4);
         assert!(removed > 0);
         let band_left = (30..60)
             .flat_map(|y| (110..180).map(move |x| (x, y)))
@@ -152,7 +153,7 @@ mod tests {
                 0
             }])
         });
-        drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4);
+        drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4);
         for (x, y, p) in img.enumerate_pixels() {
             let tower = (10..70).contains(&x) && (10..70).contains(&y);
             if tower && !stair(x, y) {
@@ -174,6 +175,6 @@ mod tests {
                 }],
             )
         });
-        assert_eq!(drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4), 0);
+        assert_eq!(drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4), 0);
     }
 }
