@@ -193,7 +193,7 @@ pub fn image_edges(img: &RgbImage, params: &GothicParams) -> image::GrayImage {
     if let Some(h) = &params.hatching {
         gray = hatching::suppress(&gray, params.edge_threshold, h).0;
     }
-    likelihood::prewitt_edges(&gray, params.edge_threshold)
+    raster::edges::prewitt_edges(&gray, &likelihood::edge_rule(params.edge_threshold)).mask
 }
 
 /// Refuses images too small for an element (both entry points).
