@@ -13,7 +13,9 @@ use raster::components::{Connectivity, components_where};
 use super::detect::{self, Seed};
 use super::element::Theta;
 use super::likelihood::DistanceMap;
-use super::{GothicEstimate, GothicParams, organise};
+use super::model::GothicEstimate;
+use super::organise;
+use super::params::GothicParams;
 use crate::classify::{self, Class, ClassifyParams, LogLikelihoods, Training};
 use crate::{FacadeError, Result};
 

@@ -9,7 +9,7 @@ use imageproc::gradients::sobel_gradients;
 use raster::components::{Connectivity, components_where};
 use serde::{Deserialize, Serialize};
 
-use super::GothicEstimate;
+use super::model::GothicEstimate;
 use super::watershed::{flood, regional_minima};
 
 /// Thresholds of the masonry step (none are given in §4.2).
@@ -388,7 +388,7 @@ mod tests {
     fn a_uniform_wall_is_one_stone_and_element_pixels_are_zero() {
         let img = RgbImage::from_pixel(30, 30, Rgb([150, 150, 150]));
         let mut est = empty(30, 30);
-        est.elements.push(crate::gothic::Element {
+        est.elements.push(crate::gothic::model::Element {
             id: 0,
             x0: 10.0,
             y0: 25.0,
@@ -397,7 +397,7 @@ mod tests {
             v: 5.0,
             group: None,
             parent: None,
-            kind: crate::gothic::ArchKind::Round,
+            kind: crate::gothic::element::ArchKind::Round,
             depth: 0,
             mean_distance: 0.0,
             support: 1.0,
