@@ -90,10 +90,10 @@ pub fn window_map(ll: &LogLikelihoods, p: &ClassMapParams) -> Result<WindowMap> 
 }
 
 /// Mean over the (2r + 1)² box around each pixel, clipped at the image border: the box sums
-/// of [`super::hatching::box_sums`] over the clipped box's area.
+/// of [`super::hatching_tone::box_sums`] over the clipped box's area.
 fn box_mean(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
     let span = |c: usize, n: usize| (c + r + 1).min(n) - c.saturating_sub(r);
-    super::hatching::box_sums(v, w, h, r)
+    super::hatching_tone::box_sums(v, w, h, r)
         .into_iter()
         .enumerate()
         .map(|(i, s)| s / (span(i % w, w) * span(i / w, h)) as f64)

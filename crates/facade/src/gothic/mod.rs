@@ -38,7 +38,7 @@ pub mod detect;
 pub mod dual;
 pub mod element;
 pub mod group;
-pub mod hatching;
+pub mod hatching_tone;
 pub mod hierarchy;
 pub mod likelihood;
 pub mod masonry;
@@ -73,7 +73,7 @@ pub fn distance_map(img: &RgbImage, params: &GothicParams) -> DistanceMap {
 pub fn image_edges(img: &RgbImage, params: &GothicParams) -> image::GrayImage {
     let mut gray = image::imageops::grayscale(img);
     if let Some(h) = &params.hatching {
-        gray = hatching::suppress(&gray, params.edge_threshold, h).0;
+        gray = hatching_tone::suppress(&gray, params.edge_threshold, h).0;
     }
     raster::edges::prewitt_edges(&gray, &likelihood::edge_rule(params.edge_threshold)).mask
 }

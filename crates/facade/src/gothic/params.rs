@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::hatching;
+use super::hatching_tone;
 use super::optimise::ShapeBounds;
 
 /// Every threshold of the Gothic pipeline. The dissertation fixes none of them (§4.2).
@@ -37,8 +37,9 @@ pub struct GothicParams {
     pub max_levels: usize,
     /// Slack (px) when testing whether one element contains another.
     pub nesting_tolerance: f64,
-    /// Hatching suppression before the edges (engravings; [`hatching`](super::hatching)), off for photographs.
-    pub hatching: Option<hatching::HatchParams>,
+    /// Hatching suppression before the edges (engravings; [`hatching_tone`]), off for
+    /// photographs.
+    pub hatching: Option<hatching_tone::HatchParams>,
 }
 
 impl Default for GothicParams {
