@@ -96,8 +96,8 @@ impl Default for Params {
 
 impl Params {
     /// Checks ranges; the message names the parameter.
-    pub fn validate(&self) -> Result<(), crate::Error> {
-        let bad = |what: &str| Err(crate::Error::BadParam(what.to_string()));
+    pub fn validate(&self) -> Result<(), crate::error::Error> {
+        let bad = |what: &str| Err(crate::error::Error::BadParam(what.to_string()));
         if self.window < 3 || self.window.is_multiple_of(2) || self.window > 101 {
             return bad("window must be odd, from 3 to 101");
         }
@@ -156,7 +156,7 @@ pub struct Corners {
 
 /// Runs §2.1 on a grey image. Images too small for a window, or without edges, give no
 /// corners.
-pub fn detect(img: &Gray, params: &Params) -> Result<Corners, crate::Error> {
+pub fn detect(img: &Gray, params: &Params) -> Result<Corners, crate::error::Error> {
     params.validate()?;
     let edges = edge_map(img, params.window, params.sigma, params.subpixel);
     let candidates = candidates(&edges, params);

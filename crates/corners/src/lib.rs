@@ -43,18 +43,11 @@
 pub mod detect;
 pub mod draw;
 pub mod edge;
+mod error;
 pub mod fit;
 pub mod repeat;
 mod sat;
 
 pub use detect::{Corner, Corners, Params, detect};
 pub use edge::Gray;
-
-/// Errors of the library.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum Error {
-    #[error("bad parameter: {0}")]
-    BadParam(String),
-    #[error("bad homography: {0}")]
-    BadHomography(String),
-}
+pub use error::Error;
