@@ -51,9 +51,11 @@ pub mod watershed;
 
 use image::RgbImage;
 
-pub use element::{ArchKind, Theta};
+// GOTHIC.json's types and the pipeline's settings, in files of their own.
 pub use model::{Element, GothicEstimate, Group};
 pub use params::{GothicParams, Progress};
+
+pub use element::{ArchKind, Theta};
 pub use vsg::{VsgOptions, to_vsg};
 
 use crate::{FacadeError, Result};
