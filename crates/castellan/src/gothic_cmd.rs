@@ -9,7 +9,7 @@ use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use facade::classify::{ClassifyParams, Training};
 use facade::gothic::classes::ClassMapParams;
-use facade::gothic::hatching::HatchParams;
+use facade::gothic::hatching_tone::HatchParams;
 use facade::gothic::masonry::{self, MasonryParams};
 use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
 use image::{GrayImage, RgbImage};

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::edge::{EdgeMap, Gray, edge_map};
+use crate::error::Error;
 use crate::fit::{Asymptotes, Conic, Moments, fit_moments};
 use crate::sat::{EdgePoint, MomentTable, TILE};
 
@@ -96,8 +97,8 @@ impl Default for Params {
 
 impl Params {
     /// Checks ranges; the message names the parameter.
-    pub fn validate(&self) -> Result<(), crate::Error> {
-        let bad = |what: &str| Err(crate::Error::BadParam(what.to_string()));
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |what: &str| Err(Error::BadParam(what.to_string()));
         if self.window < 3 || self.window.is_multiple_of(2) || self.window > 101 {
             return bad("window must be odd, from 3 to 101");
         }
@@ -156,7 +157,7 @@ pub struct Corners {
 
 /// Runs §2.1 on a grey image. Images too small for a window, or without edges, give no
 /// corners.
-pub fn detect(img: &Gray, params: &Params) -> Result<Corners, crate::Error> {
+pub fn detect(img: &Gray, params: &Params) -> Result<Corners, Error> {
     params.validate()?;
     let edges = edge_map(img, params.window, params.sigma, params.subpixel);
     let candidates = candidates(&edges, params);

@@ -45,6 +45,7 @@
 pub mod detect;
 pub mod draw;
 pub mod edge;
+mod error;
 pub mod evaluate;
 pub mod fit;
 pub mod repeat;
@@ -52,12 +53,4 @@ mod sat;
 
 pub use detect::{Corner, Corners, Params, detect};
 pub use edge::Gray;
-
-/// Errors of the library.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum Error {
-    #[error("bad parameter: {0}")]
-    BadParam(String),
-    #[error("bad homography: {0}")]
-    BadHomography(String),
-}
+pub use error::Error;

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use nalgebra::Matrix3;
 
-use crate::Error;
+use crate::error::Error;
 
 /// A plane homography x₂ ~ H x₁ in homogeneous pixel coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]

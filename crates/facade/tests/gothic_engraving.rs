@@ -2,7 +2,7 @@
 //! drawn in ink on paper, every surface ruled with coursing lines or hatched, as in the
 //! Viollet-le-Duc elevations. With the suppression every window is found within a few pixels.
 
-use facade::gothic::hatching::HatchParams;
+use facade::gothic::hatching_tone::HatchParams;
 use facade::gothic::synth::{SynthSpec, TrueElement, engraving, recovered};
 use facade::gothic::{GothicEstimate, GothicParams, estimate};
 

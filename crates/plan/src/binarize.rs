@@ -4,8 +4,9 @@
 
 use image::{GrayImage, Luma};
 use imageproc::contrast::otsu_level;
-use imageproc::distance_transform::Norm;
-use imageproc::morphology::{close, open};
+use imageproc::morphology::close;
+use raster::components::{Components, Connectivity, components};
+use raster::morphology::{Norm, distance_to_background, open_close, top_hat};
 
 /// What pre-processing found, for reports and warnings.
 #[derive(Debug, Clone, Default, serde::Serialize)]
@@ -24,12 +25,12 @@ pub struct PreStats {
     pub dropped_marks: usize,
     /// Ink pixels removed as thin lines (vault ribs, hachures; [`drop_thin_lines`]).
     pub thin_line_pixels: usize,
-    /// Paper pixels filled between hatch strokes ([`crate::hatching::fill_hatching`]).
+    /// Paper pixels filled between hatch strokes ([`crate::hatched_walls::fill_hatching`]).
     pub hatching_pixels: usize,
     /// With hatching off: the share of the sheet in diagonal hatch patterns
-    /// ([`crate::hatching::hatch_share`]), for the hint that the walls may be hatched.
+    /// ([`crate::hatched_walls::hatch_share`]), for the hint that the walls may be hatched.
     pub hatch_share: f64,
-    /// Ink pixels removed as hachures ([`crate::hachures::drop_hachures`]).
+    /// Ink pixels removed as hachures ([`crate::hachure_bands::drop_hachures`]).
     pub hachure_pixels: usize,
     /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
     pub dash_links: usize,
@@ -42,9 +43,9 @@ pub struct PreStats {
 pub struct Cleanup {
     /// Fraction of the wall thickness below which vault ribs go ([`drop_thin_lines`]; 0 = off).
     pub thin_lines: f64,
-    /// Fill the paper between hatch strokes ([`crate::hatching::fill_hatching`]).
+    /// Fill the paper between hatch strokes ([`crate::hatched_walls::fill_hatching`]).
     pub hatching: bool,
-    /// Remove bands of hachures ([`crate::hachures::drop_hachures`]).
+    /// Remove bands of hachures ([`crate::hachure_bands::drop_hachures`]).
     pub hachures: bool,
     /// Join dotted and dashed lines ([`crate::dashes::link_dashes`]).
     pub dashes: bool,
@@ -67,89 +68,6 @@ pub fn binarize(grey: &GrayImage, level: u8) -> GrayImage {
             0
         }])
     })
-}
-
-/// Sizes and bounding boxes of the 8-connected components of `value` pixels.
-pub(crate) struct Components {
-    pub(crate) labels: Vec<u32>,
-    pub(crate) sizes: Vec<usize>,
-    pub(crate) bbox: Vec<[u32; 4]>,
-}
-
-/// Pixel connectivity of a region.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Connectivity {
-    Four,
-    Eight,
-}
-
-/// Labels the regions of `value` pixels by flood fill (label 0 = other pixels), with sizes
-/// and bounding boxes in the same pass. Used instead of imageproc's `connected_components`,
-/// which needs a converted copy of the image and a second pass for sizes: pre-processing of
-/// the 3000 × 2000 benchmark scan went from 0.75–0.96 s to about 0.4 s
-/// (`--example stage_times`, noisy on shared cores).
-pub(crate) fn components(img: &GrayImage, value: u8, conn: Connectivity) -> Components {
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    let raw = img.as_raw();
-    let mut labels = vec![0u32; w * h];
-    let mut sizes = vec![0usize];
-    let mut bbox = vec![[u32::MAX, u32::MAX, 0, 0]];
-    let steps: &[(i64, i64)] = match conn {
-        Connectivity::Four => &[(1, 0), (-1, 0), (0, 1), (0, -1)],
-        Connectivity::Eight => &[
-            (1, 0),
-            (-1, 0),
-            (0, 1),
-            (0, -1),
-            (1, 1),
-            (1, -1),
-            (-1, 1),
-            (-1, -1),
-        ],
-    };
-    let mut stack = Vec::new();
-    for s in 0..w * h {
-        if raw[s] != value || labels[s] != 0 {
-            continue;
-        }
-        let id = sizes.len() as u32;
-        let (mut size, mut b) = (0usize, [u32::MAX, u32::MAX, 0, 0]);
-        labels[s] = id;
-        stack.push(s);
-        while let Some(i) = stack.pop() {
-            let (x, y) = ((i % w) as i64, (i / w) as i64);
-            size += 1;
-            b = [
-                b[0].min(x as u32),
-                b[1].min(y as u32),
-                b[2].max(x as u32),
-                b[3].max(y as u32),
-            ];
-            for &(dx, dy) in steps {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                    continue;
-                }
-                let j = ny as usize * w + nx as usize;
-                if raw[j] == value && labels[j] == 0 {
-                    labels[j] = id;
-                    stack.push(j);
-                }
-            }
-        }
-        sizes.push(size);
-        bbox.push(b);
-    }
-    Components {
-        labels,
-        sizes,
-        bbox,
-    }
-}
-
-/// Opening then closing with the 3 × 3 square element (§5.1.2 step 4).
-pub fn open_close(img: &GrayImage) -> GrayImage {
-    close(&open(img, Norm::LInf, 1), Norm::LInf, 1)
 }
 
 /// Sets every pixel of the components smaller than `min` (label 0 is background) to `to`.
@@ -206,27 +124,27 @@ pub fn preprocess_clean(
     };
     let long = img.width().max(img.height());
     let t = if cleanup.thin_lines > 0.0 || cleanup.hachures || cleanup.dashes {
-        wall_thickness(&open_close(&img))
+        wall_thickness(&open_close(&img, Norm::LInf, 1))
     } else {
         0.0
     };
-    let params = crate::hatching::HatchParams::for_sheet(long);
+    let params = crate::hatched_walls::HatchParams::for_sheet(long);
     if cleanup.hatching {
-        stats.hatching_pixels = crate::hatching::fill_hatching(&mut img, &params);
+        stats.hatching_pixels = crate::hatched_walls::fill_hatching(&mut img, &params);
     } else {
-        stats.hatch_share = crate::hatching::hatch_share(&img, &params);
+        stats.hatch_share = crate::hatched_walls::hatch_share(&img, &params);
     }
     if cleanup.hachures {
         let radius = (t / 4.0).floor().clamp(1.0, 4.0) as u8;
         stats.hachure_pixels =
-            crate::hachures::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
+            crate::hachure_bands::drop_hachures(&mut img, radius, (5.0 * t).max(12.0));
         // The specks step (2) would fill are what turn a band of merged hachures solid. A
         // share of 0.175 (tried 0.15, 0.175, 0.2, 0.25 on the dev set, docs/plan.md) keeps the
         // exact tower counts; at 0.15 densely hatched walls (Avignon 353) go too.
         let window = (1.5 * t).round().max(4.0) as u32;
         let core = t.ceil().clamp(3.0, 255.0) as u8;
         stats.hachure_pixels +=
-            crate::hachure_texture::drop_hachure_texture(&mut img, window, core, min, 0.175, 4);
+            crate::hachure_blobs::drop_hachure_blobs(&mut img, window, core, min, 0.175, 4);
     }
     if cleanup.dashes {
         stats.dash_links =
@@ -244,7 +162,7 @@ pub fn preprocess_clean(
     let white = components(&img, 0, Connectivity::Four);
     stats.filled_white = remove_small(&mut img, &white, min, 255);
     // (4): open then close with a 3 × 3 element removes lines thinner than 3 pixels.
-    img = open_close(&img);
+    img = open_close(&img, Norm::LInf, 1);
     // (5): black regions under 0.05 %.
     let mut black = components(&img, 255, Connectivity::Eight);
     stats.removed_black = remove_small(&mut img, &black, min, 0);
@@ -289,10 +207,7 @@ pub fn preprocess_clean(
 /// Typical wall thickness in pixels: for a strip of thickness T the mean distance from its
 /// pixels to the nearest open pixel is about T / 4 (chessboard distance), so T ≈ 4 × mean.
 pub fn wall_thickness(bin: &GrayImage) -> f64 {
-    let inverted = GrayImage::from_fn(bin.width(), bin.height(), |x, y| {
-        Luma([255 - bin.get_pixel(x, y)[0]])
-    });
-    let dist = imageproc::distance_transform::distance_transform(&inverted, Norm::LInf);
+    let dist = distance_to_background(bin, Norm::LInf);
     let (mut sum, mut n) = (0.0, 0usize);
     for (d, b) in dist.pixels().zip(bin.pixels()) {
         if b[0] == 255 {
@@ -343,16 +258,7 @@ pub fn drop_thin_lines(img: &mut GrayImage, radius: u8, door_radius: u8, min_are
         return 0;
     }
     let (w, h) = (img.width() as usize, img.height() as usize);
-    let opened = open(img, Norm::L2, radius);
-    let residue = GrayImage::from_fn(img.width(), img.height(), |x, y| {
-        Luma([
-            if img.get_pixel(x, y)[0] == 255 && opened.get_pixel(x, y)[0] == 0 {
-                255
-            } else {
-                0
-            },
-        ])
-    });
+    let (opened, residue) = top_hat(img, Norm::L2, radius);
     let c = components(&residue, 255, Connectivity::Eight);
     // A corner the opening shaves off a thick wall lies within `radius` of what stays; a line
     // reaches farther from it (a size threshold kept the short pieces a grid line cuts a rib
@@ -505,6 +411,7 @@ pub fn drop_marks(img: &mut GrayImage) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use raster::morphology::complement;
 
     fn grey_from(rows: &[&str]) -> GrayImage {
         let h = rows.len() as u32;
@@ -613,6 +520,18 @@ mod tests {
         let mut rooms = ribbed(false);
         assert_eq!(drop_thin_lines(&mut rooms, 2, 1, 50.0), 0);
         assert_eq!(rooms.get_pixel(240, 240)[0], 255, "the partition");
+    }
+
+    #[test]
+    fn without_dash_linking_a_dashed_line_is_removed_as_specks() {
+        // The sheet of `dashes`' tests (a dashed line along rows 20–21), drawn as ink on paper.
+        let sheet = crate::dashes::tests::sheet();
+        let (clean, _) = preprocess(&complement(&sheet), 0.005);
+        assert_eq!(clean.get_pixel(40, 21)[0], 0);
+        let mut linked = sheet;
+        crate::dashes::link_dashes(&mut linked, 200, 20.0, 4.0, 3.0);
+        let (clean, _) = preprocess(&complement(&linked), 0.005);
+        assert_eq!(clean.get_pixel(40, 21)[0], 255);
     }
 
     #[test]

@@ -13,7 +13,7 @@ use image::{GrayImage, Luma};
 use imageproc::contours::{BorderType, find_contours};
 use serde::Serialize;
 
-use crate::label::Label;
+use crate::legend::Label;
 
 /// A tower found as a bulge of the castle's outline (pixels).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -4,8 +4,8 @@
 //! open (§5.2 item 4). Runs on the thresholded drawing before the specks are removed.
 
 use image::GrayImage;
+use raster::components::{Connectivity, components};
 
-use crate::binarize::{Connectivity, components};
 use crate::strokes::{Grid, Stroke, angle_between, strokes};
 
 /// Directions that count as collinear differ by at most this (radians).
@@ -129,14 +129,14 @@ fn draw_bar(img: &mut GrayImage, p: [f64; 2], q: [f64; 2], r: f64) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use image::Luma;
 
     /// A 120 × 80 sheet: a dashed line (6 × 2 dashes every 10 px along row 20), a dotted one
     /// (2 × 2 dots every 6 px along column 100), a row of 12 × 12 "letters" every 16 px, and
     /// two stray dashes.
-    fn sheet() -> GrayImage {
+    pub(crate) fn sheet() -> GrayImage {
         GrayImage::from_fn(120, 80, |x, y| {
             let dashed = (20..22).contains(&y) && (10..90).contains(&x) && x % 10 < 6;
             let dotted = (100..102).contains(&x) && (10..70).contains(&y) && y % 6 < 2;
@@ -162,21 +162,5 @@ mod tests {
         }
         assert_eq!(img.get_pixel(24, 55)[0], 0, "between letters");
         assert_eq!(img.get_pixel(28, 71)[0], 0, "between the stray dashes");
-    }
-
-    #[test]
-    fn without_the_step_a_dashed_line_is_removed_as_specks() {
-        let (clean, _) = crate::binarize::preprocess(&grey(&sheet()), 0.005);
-        assert_eq!(clean.get_pixel(40, 21)[0], 0);
-        let mut linked = sheet();
-        link_dashes(&mut linked, 200, 20.0, 4.0, 3.0);
-        let (clean, _) = crate::binarize::preprocess(&grey(&linked), 0.005);
-        assert_eq!(clean.get_pixel(40, 21)[0], 255);
-    }
-
-    fn grey(bin: &GrayImage) -> GrayImage {
-        GrayImage::from_fn(bin.width(), bin.height(), |x, y| {
-            Luma([255 - bin.get_pixel(x, y)[0]])
-        })
     }
 }

@@ -2,6 +2,8 @@
 //! edges as pixel chains (multi-edges and loops allowed), faces with the white pixels each owns,
 //! the outer face included; and the §5.1.6 simplification (leaf edges pruned, degree-2 merged).
 
+use raster::components::{Connectivity, components_where};
+
 use crate::thin::{Mask, NEIGHBOURS};
 
 /// A graph vertex: a wall end or junction, at the mean of its skeleton pixels.
@@ -167,33 +169,15 @@ pub fn vectorise(skel: &Mask) -> Graph {
 /// the same faces and hands each face its pixels directly. Returns a face id per pixel
 /// (`u32::MAX` on the skeleton) and the number of faces.
 pub fn faces(skel: &Mask) -> (Vec<u32>, usize) {
-    let (w, h) = (skel.width as i32, skel.height as i32);
-    let mut fid = vec![NONE; skel.data.len()];
-    let mut count = 0u32;
-    let mut stack = Vec::new();
-    for s in 0..skel.data.len() {
-        if skel.data[s] == 1 || fid[s] != NONE {
-            continue;
-        }
-        fid[s] = count;
-        stack.push(s);
-        while let Some(j) = stack.pop() {
-            let (x, y) = xy(j, w as usize);
-            for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= w || ny >= h {
-                    continue;
-                }
-                let k = (ny * w + nx) as usize;
-                if skel.data[k] == 0 && fid[k] == NONE {
-                    fid[k] = count;
-                    stack.push(k);
-                }
-            }
-        }
-        count += 1;
-    }
-    (fid, count as usize)
+    let (w, h) = (skel.width as usize, skel.height as usize);
+    let c = components_where(w, h, Connectivity::Four, |i| skel.data[i] == 0);
+    // Component labels count from 1 in the order of their first pixel; face ids from 0.
+    let fid = c
+        .labels
+        .into_iter()
+        .map(|l| if l == 0 { NONE } else { l - 1 })
+        .collect();
+    (fid, c.sizes.len() - 1)
 }
 
 impl Graph {

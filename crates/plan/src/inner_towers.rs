@@ -10,7 +10,8 @@
 //! walls) and have a tower's thick wall: at least 0.3 of the curtain's thickness, around a
 //! room no wider than 1.5 times that wall (docs/plan.md, "Inner-ward towers").
 
-use crate::label::{Apex, Beyond, Label, Scene, beyond_apex, bulge_apex};
+use crate::legend::Label;
+use crate::scene::{Apex, Beyond, Scene, beyond_apex, bulge_apex};
 
 /// An inner ward's tower must bulge this fraction of its chord into the courtyard (an outer
 /// tower 0.25): walls inside the enceinte bend round stairs and halls more often than the

@@ -2,116 +2,10 @@
 //! surroundings, outer walls, courtyard, tower walls by the convexity (Jensen) test, tower
 //! rooms, great hall and its walls, chapel and its walls, unknown — then every pixel's label.
 
-use serde::{Deserialize, Serialize};
-
-use crate::graph::Graph;
+pub use crate::legend::Label;
+use crate::scene::{Beyond, beyond_apex, bulge_apex};
+pub use crate::scene::{FaceInfo, Scene};
 use crate::thin::Mask;
-
-/// The label names of the PLAN.json / LABELS.png contract, in legend order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Label {
-    CastleSurroundings = 0,
-    CastleOuterWall = 1,
-    Courtyard = 2,
-    TowerWall = 3,
-    TowerRoom = 4,
-    GreatHall = 5,
-    GreatHallWall = 6,
-    Chapel = 7,
-    ChapelWall = 8,
-    UnknownRoom = 9,
-    UnknownWall = 10,
-}
-
-impl Label {
-    pub const ALL: [Label; 11] = [
-        Label::CastleSurroundings,
-        Label::CastleOuterWall,
-        Label::Courtyard,
-        Label::TowerWall,
-        Label::TowerRoom,
-        Label::GreatHall,
-        Label::GreatHallWall,
-        Label::Chapel,
-        Label::ChapelWall,
-        Label::UnknownRoom,
-        Label::UnknownWall,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Label::CastleSurroundings => "castle_surroundings",
-            Label::CastleOuterWall => "castle_outer_wall",
-            Label::Courtyard => "courtyard",
-            Label::TowerWall => "tower_wall",
-            Label::TowerRoom => "tower_room",
-            Label::GreatHall => "great_hall",
-            Label::GreatHallWall => "great_hall_wall",
-            Label::Chapel => "chapel",
-            Label::ChapelWall => "chapel_wall",
-            Label::UnknownRoom => "unknown_room",
-            Label::UnknownWall => "unknown_wall",
-        }
-    }
-
-    /// The colours of the dissertation's figures (§5.1.6 lists them by name).
-    pub fn color(self) -> [u8; 3] {
-        match self {
-            Label::CastleSurroundings => [20, 30, 120],
-            Label::CastleOuterWall => [240, 220, 30],
-            Label::Courtyard => [50, 110, 230],
-            Label::TowerWall => [250, 140, 20],
-            Label::TowerRoom => [30, 170, 60],
-            Label::GreatHall => [150, 200, 250],
-            Label::GreatHallWall => [250, 140, 140],
-            Label::Chapel => [40, 220, 220],
-            Label::ChapelWall => [210, 30, 30],
-            Label::UnknownRoom => [160, 230, 140],
-            Label::UnknownWall => [255, 255, 255],
-        }
-    }
-
-    pub fn is_wall(self) -> bool {
-        matches!(
-            self,
-            Label::CastleOuterWall
-                | Label::TowerWall
-                | Label::GreatHallWall
-                | Label::ChapelWall
-                | Label::UnknownWall
-        )
-    }
-}
-
-/// Per-face measurements the heuristics use.
-#[derive(Debug, Clone, Default)]
-pub struct FaceInfo {
-    /// White (open) pixels the face owns.
-    pub area: usize,
-    pub sum: [f64; 2],
-    pub touches_border: bool,
-    /// Largest distance from a white pixel to a wall (half the widest width).
-    pub max_inset: f64,
-}
-
-/// Inputs of the heuristics: the simplified graph and the pixel maps behind it.
-pub struct Scene<'a> {
-    pub walls: &'a Mask,
-    pub skel: &'a Mask,
-    pub graph: &'a Graph,
-    pub face_of: &'a [u32],
-    pub faces: &'a [FaceInfo],
-    /// Faces on either side of each edge.
-    pub edge_faces: &'a [Vec<usize>],
-    /// Wall thickness at each edge, pixels.
-    pub thickness: &'a [f64],
-    /// Also test walls inside the enceinte as towers of an inner ward ((4') in [`heuristics`]).
-    pub inner_ward_towers: bool,
-    /// Faces on the outer wall at least this fraction of the courtyard's area are further
-    /// wards ((5') in [`heuristics`]); 0 keeps one courtyard as §5.1.6 does.
-    pub ward_ratio: f64,
-}
 
 /// Labels of faces and edges, and what the heuristics could not find.
 #[derive(Debug, Clone)]
@@ -267,14 +161,6 @@ fn castle_extent(walls: &Mask) -> f64 {
     }
 }
 
-/// The farthest point of an edge's chain from its chord, as §5.1.6 (4)'s convexity test sees it.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Apex {
-    pub point: (f64, f64),
-    /// Unit vector from the chord to the apex.
-    pub normal: (f64, f64),
-}
-
 /// §5.1.6 (4): compares the edge's chain with the straight chord between its vertices. The
 /// chain is a tower when it departs far from the chord (Jensen's inequality: a convex bulge),
 /// towards the exterior: just beyond its farthest point lies the castle surroundings. Towers
@@ -293,73 +179,6 @@ fn is_tower(
         Beyond::Face(f) => fl.get(f).copied().flatten() == Some(outside),
         Beyond::Wall => false,
     })
-}
-
-/// The apex of the edge when its chain bulges at least `bulge` of its chord (and 1.5 wall
-/// thicknesses) away from it, and chord and bulge are small against the castle's `extent`.
-pub(crate) fn bulge_apex(s: &Scene, e: usize, extent: f64, bulge: f64) -> Option<Apex> {
-    let edge = &s.graph.edges[e];
-    let a = &s.graph.vertices[edge.from];
-    let b = &s.graph.vertices[edge.to];
-    let (ax, ay) = (a.x, a.y);
-    let (dx, dy) = (b.x - ax, b.y - ay);
-    let len = dx.hypot(dy);
-    let mut best = (0.0f64, (ax, ay), (0.0, 0.0));
-    for &(px, py) in &edge.points {
-        let (px, py) = (px as f64, py as f64);
-        let (foot, dist) = if len < 2.0 {
-            ((ax, ay), (px - ax).hypot(py - ay))
-        } else {
-            let t = ((px - ax) * dx + (py - ay) * dy) / (len * len);
-            let f = (ax + t * dx, ay + t * dy);
-            (f, (px - f.0).hypot(py - f.1))
-        };
-        if dist > best.0 {
-            best = (dist, (px, py), foot);
-        }
-    }
-    let (dev, p, foot) = best;
-    let t = s.thickness[e];
-    if dev < (bulge * len).max(1.5 * t).max(3.0) || len > 0.45 * extent || dev > 0.45 * extent {
-        return None;
-    }
-    Some(Apex {
-        point: p,
-        normal: ((p.0 - foot.0) / dev, (p.1 - foot.1) / dev),
-    })
-}
-
-/// What lies just beyond an apex, outwards through its wall.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Beyond {
-    /// Off the image: the surroundings.
-    Off,
-    Face(usize),
-    /// Wall further than the edge's thickness and 8 px.
-    Wall,
-}
-
-/// The face just beyond the apex, outwards through the wall.
-pub(crate) fn beyond_apex(s: &Scene, e: usize, apex: Apex) -> Beyond {
-    let (p, (nx, ny)) = (apex.point, apex.normal);
-    let w = s.walls.width as i32;
-    let h = s.walls.height as i32;
-    let reach = (s.thickness[e] + 8.0).ceil() as i32;
-    for k in 1..=reach {
-        let (qx, qy) = (
-            (p.0 + nx * k as f64).round() as i32,
-            (p.1 + ny * k as f64).round() as i32,
-        );
-        if qx < 0 || qy < 0 || qx >= w || qy >= h {
-            return Beyond::Off;
-        }
-        let i = (qy * w + qx) as usize;
-        if s.skel.data[i] == 1 || s.walls.data[i] == 1 {
-            continue;
-        }
-        return Beyond::Face(s.face_of[i] as usize);
-    }
-    Beyond::Wall
 }
 
 /// Label of every pixel (§5.1.6): open pixels take their face's label; wall pixels take the

@@ -47,14 +47,16 @@ pub mod eval;
 pub mod extrude;
 pub mod fit;
 pub mod graph;
-pub mod hachure_texture;
-pub mod hachures;
-pub mod hatching;
+pub mod hachure_bands;
+pub mod hachure_blobs;
+pub mod hatched_walls;
 mod inner_towers;
 pub mod label;
+mod legend;
 pub mod output;
 pub mod scale;
 pub mod scalebar;
+mod scene;
 mod strokes;
 pub mod synth;
 pub mod thin;
@@ -62,6 +64,7 @@ pub mod thin;
 use image::DynamicImage;
 
 use imageproc::distance_transform::{Norm, distance_transform};
+use raster::morphology::distance_to_background;
 
 use crate::fit::Fit;
 use crate::graph::Vertex;
@@ -104,14 +107,14 @@ pub struct Options {
     /// Count bulges of the castle's outline with no room of their own as towers
     /// ([`bulges::find`]; issue 11, departure from §5.1.6 (4)).
     pub bulge_towers: bool,
-    /// Fill hatched walls ([`hatching::fill_hatching`]) before §5.1.2's steps, for drawings
+    /// Fill hatched walls ([`hatched_walls::fill_hatching`]) before §5.1.2's steps, for drawings
     /// whose walls are hatched. Off by default: on the development set (solid walls) it
     /// takes hachures for hatching and exact tower counts fall 6 → 4 (docs/plan.md).
     pub hatching: bool,
-    /// Remove hachured slopes and moats ([`hachures::drop_hachures`], then merged hachures by
-    /// [`hachure_texture::drop_hachure_texture`]) before §5.1.2's steps. Off by default: points
-    /// right 120 → 126 and exact towers stay 6, but closed outer walls fall 205 → 204 of 236
-    /// (docs/plan.md, "Hachures, second pass").
+    /// Remove hachured slopes and moats ([`hachure_bands::drop_hachures`], then merged
+    /// hachures by [`hachure_blobs::drop_hachure_blobs`]) before §5.1.2's steps. Off by
+    /// default: points right 120 → 126 and exact towers stay 6, but closed outer walls fall
+    /// 205 → 204 of 236 (docs/plan.md, "Hachures, second pass").
     pub hachures: bool,
     /// Join dotted and dashed lines ([`dashes::link_dashes`]) before the specks are removed
     /// (on: exact tower counts 5 → 6 on the development set, points unchanged).
@@ -253,7 +256,7 @@ fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
 
 /// Share of the sheet in diagonal hatch patterns above which a drawing parsed without the
 /// hatching step is warned that its walls may be hatched: Loftie's White Tower has 6.8 %, the
-/// other 235 castle plans at most 3.3 % (`hatching::hatch_share`).
+/// other 235 castle plans at most 3.3 % (`hatched_walls::hatch_share`).
 const HATCHED_SHARE: f64 = 0.05;
 
 /// Towers: groups of tower-wall edges joined at shared vertices. Departure from counting
@@ -384,16 +387,10 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
     let (face_of, nf) = graph::faces(&skel);
     let (g, _) = full.simplify();
 
-    // Distances: inside walls to the open space, and inside open space to the walls.
-    let open_fg = image::GrayImage::from_fn(w, h, |x, y| {
-        image::Luma([if bin.get_pixel(x, y)[0] == 255 {
-            0
-        } else {
-            255
-        }])
-    });
+    // Distances: inside walls to the open space, and inside open space to the walls (`bin`
+    // is 0 or 255 only).
     let (in_wall, in_open) = rayon::join(
-        || distance_transform(&open_fg, Norm::L2),
+        || distance_to_background(&bin, Norm::L2),
         || distance_transform(&bin, Norm::L2),
     );
 

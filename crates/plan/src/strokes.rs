@@ -1,8 +1,8 @@
 //! Shape of small regions (strokes of ink) from their second moments, and a grid to find
 //! their neighbours: shared by the clean-up steps added to §5.1.2 that recognise patterns of
-//! strokes ([`crate::hachures`], [`crate::dashes`]).
+//! strokes ([`crate::hachure_bands`], [`crate::dashes`]).
 
-use crate::binarize::Components;
+use raster::components::Components;
 
 /// A region seen as a bar: centroid, direction of its long axis, length and width.
 #[derive(Debug, Clone, Copy)]
@@ -141,8 +141,8 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::binarize::{Connectivity, components};
     use image::{GrayImage, Luma};
+    use raster::components::{Connectivity, components};
 
     #[test]
     fn a_diagonal_bar_has_its_length_width_and_direction() {

@@ -8,11 +8,14 @@
 //! the deepest peaks of D lie on the piers and contours lock onto panes (docs/gothic.md).
 
 use image::{GrayImage, Luma, RgbImage};
+use raster::components::{Connectivity, components_where};
 
 use super::detect::{self, Seed};
 use super::element::Theta;
 use super::likelihood::DistanceMap;
-use super::{GothicEstimate, GothicParams, organise};
+use super::model::GothicEstimate;
+use super::organise;
+use super::params::GothicParams;
 use crate::classify::{self, Class, ClassifyParams, LogLikelihoods, Training};
 use crate::{FacadeError, Result};
 
@@ -87,10 +90,10 @@ pub fn window_map(ll: &LogLikelihoods, p: &ClassMapParams) -> Result<WindowMap> 
 }
 
 /// Mean over the (2r + 1)² box around each pixel, clipped at the image border: the box sums
-/// of [`super::hatching::box_sums`] over the clipped box's area.
+/// of [`super::hatching_tone::box_sums`] over the clipped box's area.
 fn box_mean(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
     let span = |c: usize, n: usize| (c + r + 1).min(n) - c.saturating_sub(r);
-    super::hatching::box_sums(v, w, h, r)
+    super::hatching_tone::box_sums(v, w, h, r)
         .into_iter()
         .enumerate()
         .map(|(i, s)| s / (span(i % w, w) * span(i / w, h)) as f64)
@@ -139,49 +142,25 @@ impl WindowMap {
     pub fn blob_seeds(&self, min_depth: f32, max_seeds: usize) -> Vec<Seed> {
         let (w, h) = (self.width, self.height);
         let depth = self.depth();
-        let mut seen = vec![false; w * h];
-        let mut out = Vec::new();
-        let mut stack = Vec::new();
-        for start in 0..w * h {
-            if seen[start] || !self.window[start] {
-                continue;
-            }
-            seen[start] = true;
-            stack.push(start);
-            let mut best = (start, depth.d[start]);
-            // Each pixel is pushed at most once, so the walk is bounded by the image size.
-            while let Some(i) = stack.pop() {
-                if depth.d[i] > best.1 || (depth.d[i] == best.1 && i < best.0) {
-                    best = (i, depth.d[i]);
-                }
-                let (x, y) = (i % w, i / w);
-                let mut visit = |j: usize| {
-                    if !seen[j] && self.window[j] {
-                        seen[j] = true;
-                        stack.push(j);
-                    }
-                };
-                if x > 0 {
-                    visit(i - 1);
-                }
-                if x + 1 < w {
-                    visit(i + 1);
-                }
-                if y > 0 {
-                    visit(i - w);
-                }
-                if y + 1 < h {
-                    visit(i + w);
-                }
-            }
-            if best.1 >= min_depth {
-                out.push(Seed {
-                    x: best.0 % w,
-                    y: best.0 / w,
-                    radius: best.1,
-                });
+        let blobs = components_where(w, h, Connectivity::Four, |i| self.window[i]);
+        // The deepest pixel of each blob, the first in raster order on ties.
+        let mut best: Vec<Option<(usize, f32)>> = vec![None; blobs.sizes.len()];
+        for (i, &l) in blobs.labels.iter().enumerate() {
+            let b = &mut best[l as usize];
+            if l > 0 && b.is_none_or(|(_, d)| depth.d[i] > d) {
+                *b = Some((i, depth.d[i]));
             }
         }
+        let mut out: Vec<Seed> = best
+            .into_iter()
+            .flatten()
+            .filter(|&(_, d)| d >= min_depth)
+            .map(|(i, d)| Seed {
+                x: i % w,
+                y: i / w,
+                radius: d,
+            })
+            .collect();
         out.sort_by(|a, b| {
             b.radius
                 .total_cmp(&a.radius)

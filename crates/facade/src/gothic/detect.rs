@@ -2,10 +2,10 @@
 //! element and maximised by conjugate gradient; significant maxima are kept and duplicates
 //! suppressed.
 
-use super::GothicParams;
 use super::element::Theta;
 use super::likelihood::{DistanceMap, Fit, fit};
 use super::optimise::{ShapeBounds, maximise};
+use super::params::{GothicParams, Progress};
 
 /// A seed: a local maximum of D and its value (the radius of the empty disc around it).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -152,7 +152,7 @@ pub fn detect(dt: &DistanceMap, params: &GothicParams) -> Vec<Candidate> {
 pub fn detect_with(
     dt: &DistanceMap,
     params: &GothicParams,
-    progress: &(dyn Fn(super::Progress) + Sync),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Vec<Candidate> {
     let seeds = seeds(dt, params.min_seed_radius, params.max_seeds);
     detect_from_starts_with(dt, &starts(dt, &seeds), params, progress)
@@ -173,18 +173,18 @@ pub fn detect_from_starts_with(
     dt: &DistanceMap,
     starts: &[Theta],
     params: &GothicParams,
-    progress: &(dyn Fn(super::Progress) + Sync),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Vec<Candidate> {
     let bounds = params.bounds();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let total = starts.len();
-    progress(super::Progress::Detecting { done: 0, total });
+    progress(Progress::Detecting { done: 0, total });
     let mut out: Vec<Candidate> = rayon_map(starts, |start| {
         let theta = maximise(dt, *start, params.step, bounds, params.max_iters);
         let f = fit(dt, &theta, params.step);
         let ok = plausible(&theta, bounds, dt.width, dt.height) && significant(&f, params);
         let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress(super::Progress::Detecting { done, total });
+        progress(Progress::Detecting { done, total });
         ok.then_some(Candidate { theta, fit: f })
     });
     out.sort_by(|a, b| a.fit.mean_distance.total_cmp(&b.fit.mean_distance));

@@ -1,11 +1,11 @@
 //! Nesting of §4.2 / figure 4.4: plausible enclosing arches proposed over each group and
 //! maximised like any element, and the parent of every element (the smallest one containing it).
 
-use super::GothicParams;
 use super::detect::{Candidate, iou, plausible, significant};
 use super::element::Theta;
 use super::likelihood::{DistanceMap, fit};
 use super::optimise::maximise;
+use super::params::GothicParams;
 
 /// Whether `outer` contains `inner` with `tol` px of slack: the corners and apex of the
 /// inner element lie inside the grown outer one, and the outer one is larger.

@@ -3,60 +3,23 @@
 
 use image::GrayImage;
 use imageproc::distance_transform::euclidean_squared_distance_transform;
-use imageproc::gradients::{horizontal_prewitt, vertical_prewitt};
+use raster::edges::{EdgeRule, Reference, Thinning};
 
 use super::element::{Sample, Theta};
 
-/// Binary Prewitt edge map (255 edge, 0 not). Departure from §4.2, which thresholds the
-/// magnitude only: edges are thinned to the ridge of the magnitude across the dominant
-/// gradient axis (one pixel, or two when the step falls between them; no linking), so the
-/// MLE contour sits on the edge instead of anywhere in a 3–4 px band.
-/// `threshold` is a share of the 99th-percentile magnitude.
-pub fn prewitt_edges(gray: &GrayImage, threshold: f64) -> GrayImage {
-    let (w, h) = gray.dimensions();
-    let gx = horizontal_prewitt(gray);
-    let gy = vertical_prewitt(gray);
-    let mag: Vec<f32> = gx
-        .pixels()
-        .zip(gy.pixels())
-        .map(|(a, b)| (a[0] as f32).hypot(b[0] as f32))
-        .collect();
-    let mut out = GrayImage::new(w, h);
-    if mag.is_empty() {
-        return out;
+/// The Prewitt edges of §4.2 (`raster::edges::prewitt_edges` under this rule gives the binary
+/// edge map, 255 edge, 0 not): magnitude at least `threshold` × the 99th-percentile magnitude.
+/// Departure from §4.2, which thresholds the magnitude only: edges are thinned to the ridge of
+/// the magnitude across the dominant gradient axis (one pixel, or two when the step falls
+/// between them; no linking), so the MLE contour sits on the edge instead of anywhere in a
+/// 3–4 px band.
+pub fn edge_rule(threshold: f64) -> EdgeRule {
+    EdgeRule {
+        reference: Reference::All(0.99),
+        share: threshold,
+        floor: 1.0,
+        thinning: Thinning::Axis,
     }
-    let mut sorted = mag.clone();
-    let k = ((sorted.len() - 1) as f64 * 0.99) as usize;
-    let p99 = *sorted.select_nth_unstable_by(k, f32::total_cmp).1;
-    let t = (p99 as f64 * threshold).max(1.0) as f32;
-    let at = |x: i64, y: i64| -> f32 {
-        if x < 0 || y < 0 || x >= w as i64 || y >= h as i64 {
-            0.0
-        } else {
-            mag[y as usize * w as usize + x as usize]
-        }
-    };
-    for y in 0..h as i64 {
-        for x in 0..w as i64 {
-            let m = at(x, y);
-            if m < t {
-                continue;
-            }
-            let i = y as usize * w as usize + x as usize;
-            let (dx, dy) = (gx.as_raw()[i].unsigned_abs(), gy.as_raw()[i].unsigned_abs());
-            let (a, b) = if dx >= dy {
-                (at(x - 1, y), at(x + 1, y))
-            } else {
-                (at(x, y - 1), at(x, y + 1))
-            };
-            // A step between two pixels gives them equal magnitudes: both stay, so the zero
-            // line of D is centred on the true edge.
-            if m >= a && m >= b && (m > a || m > b) {
-                out.put_pixel(x as u32, y as u32, image::Luma([255]));
-            }
-        }
-    }
-    out
 }
 
 /// D(x, y): distance (px) to the nearest edge pixel, with bilinear look-up between pixel centres.
@@ -176,6 +139,7 @@ pub fn fit(dt: &DistanceMap, theta: &Theta, step: f64) -> Fit {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use raster::edges::prewitt_edges;
 
     fn gray(rows: &[&[u8]]) -> GrayImage {
         let w = rows[0].len() as u32;
@@ -204,7 +168,7 @@ mod tests {
     #[test]
     fn a_step_gives_the_two_columns_it_falls_between() {
         let row: &[u8] = &[10, 10, 10, 200, 200, 200];
-        let e = prewitt_edges(&gray(&[row, row, row, row]), 0.3);
+        let e = prewitt_edges(&gray(&[row, row, row, row]), &edge_rule(0.3)).mask;
         for y in 1..3 {
             let cols: Vec<u32> = (0..6).filter(|&x| e.get_pixel(x, y)[0] > 0).collect();
             assert_eq!(cols, vec![2, 3], "row {y}");
@@ -219,7 +183,7 @@ mod tests {
                 img.put_pixel(x, y, image::Luma([20]));
             }
         }
-        let dt = DistanceMap::of_edges(&prewitt_edges(&img, 0.3));
+        let dt = DistanceMap::of_edges(&prewitt_edges(&img, &edge_rule(0.3)).mask);
         // The thin edge lies on the first or last pixel of the dark box; the contour between.
         let on = Theta {
             x0: 9.5,

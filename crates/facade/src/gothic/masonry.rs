@@ -6,9 +6,10 @@
 use image::RgbImage;
 use imageproc::filter::gaussian_blur_f32;
 use imageproc::gradients::sobel_gradients;
+use raster::components::{Connectivity, components_where};
 use serde::{Deserialize, Serialize};
 
-use super::GothicEstimate;
+use super::model::GothicEstimate;
 use super::watershed::{flood, regional_minima};
 
 /// Thresholds of the masonry step (none are given in §4.2).
@@ -312,57 +313,25 @@ fn classify(
 /// Connected components (4-neighbour) of the stone label, the largest `max_stones` kept.
 fn stones(img: &RgbImage, labels: &[u8], params: &MasonryParams) -> Vec<Stone> {
     let (w, h) = (img.width() as usize, img.height() as usize);
-    let mut seen = vec![false; labels.len()];
-    let mut out = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..labels.len() {
-        if labels[start] != 2 || seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        let (mut bbox, mut area, mut sum) = ([u32::MAX, u32::MAX, 0, 0], 0usize, [0.0; 3]);
-        while let Some(i) = stack.pop() {
-            let (x, y) = (i % w, i / w);
-            bbox = [
-                bbox[0].min(x as u32),
-                bbox[1].min(y as u32),
-                bbox[2].max(x as u32),
-                bbox[3].max(y as u32),
-            ];
-            area += 1;
-            let p = img.get_pixel(x as u32, y as u32);
+    let c = components_where(w, h, Connectivity::Four, |i| labels[i] == 2);
+    // Colour sums per stone: sums of whole numbers, exact in any order.
+    let mut sums = vec![[0.0; 3]; c.sizes.len()];
+    for (&l, p) in c.labels.iter().zip(img.pixels()) {
+        if l > 0 {
             for k in 0..3 {
-                sum[k] += p[k] as f64;
+                sums[l as usize][k] += p[k] as f64;
             }
-            let mut push = |j: usize| {
-                if labels[j] == 2 && !seen[j] {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            };
-            if x > 0 {
-                push(i - 1)
-            }
-            if x + 1 < w {
-                push(i + 1)
-            }
-            if y > 0 {
-                push(i - w)
-            }
-            if y + 1 < h {
-                push(i + w)
-            }
-        }
-        if area >= params.min_stone_area {
-            out.push(Stone {
-                id: 0,
-                bbox,
-                area,
-                colour: mean(&sum, area),
-            });
         }
     }
+    let mut out: Vec<Stone> = (1..c.sizes.len())
+        .filter(|&l| c.sizes[l] >= params.min_stone_area)
+        .map(|l| Stone {
+            id: 0,
+            bbox: c.bbox[l],
+            area: c.sizes[l],
+            colour: mean(&sums[l], c.sizes[l]),
+        })
+        .collect();
     out.sort_by(|a, b| b.area.cmp(&a.area).then(a.bbox.cmp(&b.bbox)));
     out.truncate(params.max_stones);
     out.sort_by(|a, b| (a.bbox[1], a.bbox[0]).cmp(&(b.bbox[1], b.bbox[0])));
@@ -419,7 +388,7 @@ mod tests {
     fn a_uniform_wall_is_one_stone_and_element_pixels_are_zero() {
         let img = RgbImage::from_pixel(30, 30, Rgb([150, 150, 150]));
         let mut est = empty(30, 30);
-        est.elements.push(crate::gothic::Element {
+        est.elements.push(crate::gothic::model::Element {
             id: 0,
             x0: 10.0,
             y0: 25.0,
@@ -428,7 +397,7 @@ mod tests {
             v: 5.0,
             group: None,
             parent: None,
-            kind: crate::gothic::ArchKind::Round,
+            kind: crate::gothic::element::ArchKind::Round,
             depth: 0,
             mean_distance: 0.0,
             support: 1.0,

@@ -40,17 +40,22 @@ pub mod draw;
 pub mod dual;
 pub mod element;
 pub mod group;
-pub mod hatching;
+pub mod hatching_tone;
 pub mod hierarchy;
 pub mod likelihood;
 pub mod masonry;
+mod model;
 pub mod optimise;
+mod params;
 pub mod program;
 pub mod synth;
 pub mod watershed;
 
 use image::RgbImage;
-use serde::{Deserialize, Serialize};
+
+// GOTHIC.json's types and the pipeline's settings, in files of their own.
+pub use model::{Element, GothicEstimate, Group};
+pub use params::{GothicParams, Progress};
 
 pub use element::{ArchKind, Theta};
 pub use program::{VsgOptions, to_vsg};
@@ -58,128 +63,7 @@ pub use program::{VsgOptions, to_vsg};
 use crate::{FacadeError, Result};
 use detect::Candidate;
 use likelihood::{DistanceMap, fit};
-use optimise::{ShapeBounds, maximise_group};
-
-/// Every threshold of the Gothic pipeline. The dissertation fixes none of them (§4.2).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct GothicParams {
-    /// Prewitt magnitude threshold, as a share of the 99th-percentile magnitude.
-    pub edge_threshold: f64,
-    /// Contour sample step (px); sub-pixel as §4.2 asks.
-    pub step: f64,
-    /// Smallest distance-transform peak (px) that seeds an element.
-    pub min_seed_radius: f32,
-    /// Most seeds per image (bounds the work on busy images).
-    pub max_seeds: usize,
-    /// Most conjugate-gradient iterations per maximisation.
-    pub max_iters: u64,
-    /// Smallest element width (px).
-    pub min_width: f64,
-    /// Smallest element height h + v (px).
-    pub min_height: f64,
-    /// Significance: largest mean distance ∮D ds / ∮ds (px) of a kept element.
-    pub max_mean_distance: f64,
-    /// Significance: smallest share of the contour within 1.5 px of an edge.
-    pub min_support: f64,
-    /// Bounding-box IoU at which two detections are the same element.
-    pub duplicate_iou: f64,
-    /// Shape similarity for grouping: relative tolerance on h, w, v ...
-    pub group_relative: f64,
-    /// ... plus this many pixels.
-    pub group_absolute: f64,
-    /// Most rounds of grouping and enclosing-arch search (levels of figure 4.4).
-    pub max_levels: usize,
-    /// Slack (px) when testing whether one element contains another.
-    pub nesting_tolerance: f64,
-    /// Hatching suppression before the edges (engravings; [`hatching`]), off for photographs.
-    pub hatching: Option<hatching::HatchParams>,
-}
-
-impl Default for GothicParams {
-    fn default() -> Self {
-        GothicParams {
-            edge_threshold: 0.2,
-            step: 0.5,
-            min_seed_radius: 8.0,
-            max_seeds: 400,
-            max_iters: 60,
-            min_width: 16.0,
-            min_height: 24.0,
-            max_mean_distance: 0.8,
-            min_support: 0.9,
-            duplicate_iou: 0.6,
-            group_relative: 0.06,
-            group_absolute: 2.0,
-            max_levels: 3,
-            nesting_tolerance: 3.0,
-            hatching: None,
-        }
-    }
-}
-
-impl GothicParams {
-    pub fn bounds(&self) -> ShapeBounds {
-        ShapeBounds {
-            min_width: self.min_width,
-            min_height: self.min_height,
-        }
-    }
-}
-
-/// One detected element (GOTHIC.json `elements[]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Element {
-    pub id: usize,
-    pub x0: f64,
-    pub y0: f64,
-    pub h: f64,
-    pub w: f64,
-    pub v: f64,
-    /// The self-similar group it belongs to.
-    pub group: Option<usize>,
-    /// The smallest element containing it.
-    pub parent: Option<usize>,
-    pub kind: ArchKind,
-    /// Number of ancestors (0: top level).
-    pub depth: usize,
-    /// ∮ D ds / ∮ ds (px) at the estimate.
-    pub mean_distance: f64,
-    /// Share of the contour within 1.5 px of an edge.
-    pub support: f64,
-}
-
-impl Element {
-    pub fn theta(&self) -> Theta {
-        Theta {
-            x0: self.x0,
-            y0: self.y0,
-            h: self.h,
-            w: self.w,
-            v: self.v,
-        }
-    }
-}
-
-/// A self-similar group (GOTHIC.json `groups[]`): members share (h, w, v).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Group {
-    pub id: usize,
-    pub members: Vec<usize>,
-    pub h: f64,
-    pub w: f64,
-    pub v: f64,
-    /// The element enclosing the whole group, when one was found.
-    pub enclosing: Option<usize>,
-}
-
-/// GOTHIC.json.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct GothicEstimate {
-    pub width: u32,
-    pub height: u32,
-    pub elements: Vec<Element>,
-    pub groups: Vec<Group>,
-}
+use optimise::maximise_group;
 
 /// Smallest image side the pipeline accepts: an element needs a few pixels around it.
 pub const MIN_SIDE: u32 = 16;
@@ -193,9 +77,9 @@ pub fn distance_map(img: &RgbImage, params: &GothicParams) -> DistanceMap {
 pub fn image_edges(img: &RgbImage, params: &GothicParams) -> image::GrayImage {
     let mut gray = image::imageops::grayscale(img);
     if let Some(h) = &params.hatching {
-        gray = hatching::suppress(&gray, params.edge_threshold, h).0;
+        gray = hatching_tone::suppress(&gray, params.edge_threshold, h).0;
     }
-    likelihood::prewitt_edges(&gray, params.edge_threshold)
+    raster::edges::prewitt_edges(&gray, &likelihood::edge_rule(params.edge_threshold)).mask
 }
 
 /// Refuses images too small for an element (both entry points).
@@ -209,23 +93,6 @@ pub(crate) fn check_size(img: &RgbImage) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// How far the element pipeline has got, for a progress bar (a long photo can take minutes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Progress {
-    /// Edges and their distance transform.
-    Edges,
-    /// `done` of `total` starting shapes maximised.
-    Detecting { done: usize, total: usize },
-    /// Grouping round `level` (from 1) of at most `of`: `done` of `total` clusters of similar
-    /// elements re-estimated jointly, with their enclosing arches.
-    Organising {
-        level: usize,
-        of: usize,
-        done: usize,
-        total: usize,
-    },
 }
 
 /// The whole element pipeline of §4.2: detection, grouping, nesting.

@@ -265,8 +265,9 @@ pub fn maximise_group(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gothic::likelihood::prewitt_edges;
+    use crate::gothic::likelihood::edge_rule;
     use image::{GrayImage, Luma};
+    use raster::edges::prewitt_edges;
 
     fn draw(t: &Theta) -> GrayImage {
         let mut img = GrayImage::from_pixel(80, 100, Luma([200]));
@@ -287,7 +288,7 @@ mod tests {
             w: 30.0,
             v: 22.0,
         };
-        let dt = DistanceMap::of_edges(&prewitt_edges(&draw(&truth), 0.3));
+        let dt = DistanceMap::of_edges(&prewitt_edges(&draw(&truth), &edge_rule(0.3)).mask);
         (truth, dt)
     }
 

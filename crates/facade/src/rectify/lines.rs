@@ -1,10 +1,11 @@
 //! Straight edge segments for rectification (§3.1.1): Prewitt edges, thinned by non-maximum
-//! suppression, Hough lines (imageproc), then the edge pixels supporting each Hough line split into
-//! runs and refitted by total least squares so each segment is sub-degree accurate.
+//! suppression (`raster::edges`), Hough lines (imageproc), then the edge pixels supporting each
+//! Hough line split into runs and refitted by total least squares so each segment is
+//! sub-degree accurate.
 
-use image::{GrayImage, Luma};
-use imageproc::gradients::{horizontal_prewitt, vertical_prewitt};
+use image::GrayImage;
 use imageproc::hough::{LineDetectionOptions, detect_lines};
+use raster::edges::{EdgeRule, Reference, Thinning, prewitt_edges};
 use serde::{Deserialize, Serialize};
 
 /// A straight edge segment in image pixels.
@@ -73,63 +74,6 @@ impl Default for LineParams {
     }
 }
 
-struct Edges {
-    w: u32,
-    h: u32,
-    /// Edge pixels with their unit gradient.
-    pixels: Vec<(u32, u32, f32, f32)>,
-    mask: GrayImage,
-}
-
-/// Prewitt gradient, non-maximum suppression across the edge, relative threshold.
-fn prewitt_edges(gray: &GrayImage, edge_frac: f64) -> Edges {
-    let (w, h) = gray.dimensions();
-    let gx = horizontal_prewitt(gray);
-    let gy = vertical_prewitt(gray);
-    let mag: Vec<f32> = gx
-        .pixels()
-        .zip(gy.pixels())
-        .map(|(a, b)| (a[0] as f32).hypot(b[0] as f32))
-        .collect();
-    let mut sorted: Vec<f32> = mag.iter().copied().filter(|m| *m > 0.0).collect();
-    let mut mask = GrayImage::new(w, h);
-    let mut pixels = Vec::new();
-    if sorted.is_empty() {
-        return Edges { w, h, pixels, mask };
-    }
-    let k = (sorted.len() as f64 * 0.98) as usize;
-    let k = k.min(sorted.len() - 1);
-    let p98 = *sorted.select_nth_unstable_by(k, |a, b| a.total_cmp(b)).1;
-    // An absolute floor so flat images with faint noise have no edges.
-    let thr = (p98 as f64 * edge_frac).max(30.0) as f32;
-    let at = |x: i64, y: i64| -> f32 {
-        if x < 0 || y < 0 || x >= w as i64 || y >= h as i64 {
-            0.0
-        } else {
-            mag[(y as u32 * w + x as u32) as usize]
-        }
-    };
-    for y in 1..h.saturating_sub(1) {
-        for x in 1..w.saturating_sub(1) {
-            let m = mag[(y * w + x) as usize];
-            if m < thr {
-                continue;
-            }
-            let (ux, uy) = (
-                gx.get_pixel(x, y)[0] as f32 / m,
-                gy.get_pixel(x, y)[0] as f32 / m,
-            );
-            let (sx, sy) = (ux.round() as i64, uy.round() as i64);
-            let (xi, yi) = (x as i64, y as i64);
-            if m >= at(xi + sx, yi + sy) && m > at(xi - sx, yi - sy) {
-                mask.put_pixel(x, y, Luma([255]));
-                pixels.push((x, y, ux, uy));
-            }
-        }
-    }
-    Edges { w, h, pixels, mask }
-}
-
 /// Detects straight edge segments (§3.1.1, figure 3.2a).
 pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
     let (w0, h0) = gray.dimensions();
@@ -154,8 +98,18 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
         gray
     };
     let blurred = imageproc::filter::gaussian_blur_f32(img, 1.0);
-    let edges = prewitt_edges(&blurred, params.edge_frac);
-    let diag = (edges.w as f64).hypot(edges.h as f64);
+    // Magnitude above `edge_frac` of the 98th percentile of the non-zero magnitudes, with an
+    // absolute floor so flat images with faint noise have no edges; one pixel per edge.
+    let rule = EdgeRule {
+        reference: Reference::NonZero(0.98),
+        share: params.edge_frac,
+        floor: 30.0,
+        thinning: Thinning::Gradient,
+    };
+    let edges = prewitt_edges(&blurred, &rule);
+    let (w, h) = edges.mask.dimensions();
+    let pixels = edges.unit_gradients();
+    let diag = (w as f64).hypot(h as f64);
     let min_len = (params.min_length_frac * diag).max(10.0);
     let mut lines = detect_lines(
         &edges.mask,
@@ -169,10 +123,10 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
     }
     // Strongest lines first: count votes by re-walking is costly, so rank by support below.
     lines.truncate(params.max_hough_lines * 4);
-    let mut used = vec![false; edges.pixels.len()];
-    let mut index = vec![u32::MAX; (edges.w * edges.h) as usize];
-    for (k, &(x, y, _, _)) in edges.pixels.iter().enumerate() {
-        index[(y * edges.w + x) as usize] = k as u32;
+    let mut used = vec![false; pixels.len()];
+    let mut index = vec![u32::MAX; (w * h) as usize];
+    for (k, &(x, y, _, _)) in pixels.iter().enumerate() {
+        index[(y * w + x) as usize] = k as u32;
     }
     let mut candidates: Vec<(usize, Vec<usize>)> = lines
         .iter()
@@ -180,7 +134,7 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
         .map(|(i, l)| {
             (
                 i,
-                line_support(&edges, &index, l.r as f64, l.angle_in_degrees as f64),
+                line_support(&pixels, w, h, &index, l.r as f64, l.angle_in_degrees as f64),
             )
         })
         .collect();
@@ -195,7 +149,7 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
             .into_iter()
             .filter(|&k| !used[k])
             .map(|k| {
-                let (x, y, _, _) = edges.pixels[k];
+                let (x, y, _, _) = pixels[k];
                 (-(x as f64) * s + y as f64 * c, k)
             })
             .collect();
@@ -204,7 +158,7 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
         for j in 1..=pts.len() {
             if j == pts.len() || pts[j].0 - pts[j - 1].0 > 4.0 {
                 let run = &pts[start..j];
-                if let Some(seg) = fit_run(run, &edges.pixels, min_len) {
+                if let Some(seg) = fit_run(run, &pixels, min_len) {
                     for &(_, k) in run {
                         used[k] = true;
                     }
@@ -217,11 +171,19 @@ pub fn detect_segments(gray: &GrayImage, params: &LineParams) -> Vec<Segment> {
     out
 }
 
-/// Edge pixels within 2 px of the line x cos θ + y sin θ = r whose gradient is parallel to its
-/// normal (within ~25°), found by walking along the line rather than scanning every edge pixel.
-fn line_support(edges: &Edges, index: &[u32], r: f64, deg: f64) -> Vec<usize> {
+/// Edge pixels (`pixels`, with their unit gradients, at `index` in the `w` × `h` image) within
+/// 2 px of the line x cos θ + y sin θ = r whose gradient is parallel to its normal (within
+/// ~25°), found by walking along the line rather than scanning every edge pixel.
+fn line_support(
+    pixels: &[(u32, u32, f32, f32)],
+    w: u32,
+    h: u32,
+    index: &[u32],
+    r: f64,
+    deg: f64,
+) -> Vec<usize> {
     let (s, c) = deg.to_radians().sin_cos();
-    let (w, h) = (edges.w as i64, edges.h as i64);
+    let (w, h) = (w as i64, h as i64);
     let mut out = Vec::new();
     let mut visit = |x: i64, y: i64| {
         if x < 0 || y < 0 || x >= w || y >= h {
@@ -231,7 +193,7 @@ fn line_support(edges: &Edges, index: &[u32], r: f64, deg: f64) -> Vec<usize> {
         if k == u32::MAX {
             return;
         }
-        let (px, py, gx, gy) = edges.pixels[k as usize];
+        let (px, py, gx, gy) = pixels[k as usize];
         let d = px as f64 * c + py as f64 * s - r;
         if d.abs() <= 2.0 && (gx as f64 * c + gy as f64 * s).abs() > 0.9 {
             out.push(k as usize);
@@ -301,6 +263,7 @@ fn fit_run(run: &[(f64, usize)], pixels: &[(u32, u32, f32, f32)], min_len: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use image::Luma;
 
     #[test]
     fn finds_the_edges_of_a_tilted_rectangle() {

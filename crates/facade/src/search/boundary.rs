@@ -2,7 +2,8 @@
 //! gradient-peak split lines; the best top and bottom per run of strips; a dynamic programme that
 //! merges strips bottom-up into façades; then adjacent façades with close edges are merged.
 
-use super::{Gradients, Integral, SearchParams};
+use super::gradients::{Gradients, Integral};
+use super::params::SearchParams;
 
 /// Façade rectangles [x0, y0, x1, y1] (exclusive ends), left to right.
 pub fn facade_boundaries(

@@ -1,9 +1,9 @@
 //! Floors and windows inside one façade (§3.1.6–3.1.7): window vs wall. The vertical parameters
 //! {h_1, h, h_NL, N_L, w_h, w_grd, w'_h, w'_grd, w''_h, w''_grd} and the horizontal ones
-//! {w_off, w_w, w_gap, N_w} are searched separately and exhaustively over gradient peaks, and
-//! the two searches alternate a bounded number of rounds (each round can only raise the merit).
+//! {w_off, w_w, w_gap, N_w} are searched separately and exhaustively over gradient peaks; the
+//! two searches alternate a bounded number of rounds in [`super::joint`] (each round can only
+//! raise the merit), whose `fit_floors` runs them on one façade.
 
-use super::{Gradients, Integral, SearchParams};
 use crate::model::{FacadeParams, MAX_FLOORS, MAX_WINDOWS};
 
 /// Smallest floor height, window width and window gap considered (pixels).
@@ -239,25 +239,6 @@ pub(super) fn search_horizontal(cols: &[f64], cands: &[usize]) -> Horizontal {
         }
     }
     best
-}
-
-/// Fits the floors and windows of the façade `r` = [x0, y0, x1, y1] given the integral of the
-/// window-minus-wall log-likelihood (§3.1.7): the joint search of [`super::joint`] over this
-/// one façade.
-pub fn fit_floors(
-    r: [usize; 4],
-    d: &Integral,
-    grads: &Gradients,
-    p: &SearchParams,
-) -> FacadeParams {
-    let one = super::joint::JointFacade {
-        rect: r,
-        window_minus_wall: d,
-        gradients: grads,
-    };
-    super::joint::fit_floors_joint(&[one], p)
-        .pop()
-        .expect("one façade in, one out")
 }
 
 #[cfg(test)]

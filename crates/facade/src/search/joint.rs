@@ -5,7 +5,8 @@
 //! With one façade this is exactly the single-façade search of §3.1.7.
 
 use super::floors::{Horizontal, Vertical, search_horizontal, search_vertical};
-use super::{Gradients, Integral, SearchParams};
+use super::gradients::{Gradients, Integral};
+use super::params::SearchParams;
 use crate::model::FacadeParams;
 
 /// One façade taking part in a joint search: its rectangle [x0, y0, x1, y1] in its own image,
@@ -188,6 +189,25 @@ pub fn fit_floors_joint(facades: &[JointFacade], p: &SearchParams) -> Vec<Facade
             }
         })
         .collect()
+}
+
+/// Fits the floors and windows of the façade `r` = [x0, y0, x1, y1] given the integral of the
+/// window-minus-wall log-likelihood (§3.1.7): the joint search of [`fit_floors_joint`] over
+/// this one façade.
+pub fn fit_floors(
+    r: [usize; 4],
+    d: &Integral,
+    grads: &Gradients,
+    p: &SearchParams,
+) -> FacadeParams {
+    let one = JointFacade {
+        rect: r,
+        window_minus_wall: d,
+        gradients: grads,
+    };
+    fit_floors_joint(&[one], p)
+        .pop()
+        .expect("one façade in, one out")
 }
 
 #[cfg(test)]

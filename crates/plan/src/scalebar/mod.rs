@@ -6,12 +6,17 @@
 use image::GrayImage;
 use serde::Serialize;
 
-use crate::binarize::{Connectivity, binarize, components, threshold_level};
+use raster::components::{Connectivity, components};
+
+use crate::binarize::{binarize, threshold_level};
 
 pub mod eval;
+mod grid;
+mod rules;
 mod scan;
 mod ticks;
 
+use grid::Grid;
 use scan::longest_bar;
 
 /// A scale bar: its two ends, in the drawing's pixels (`y0 == y1` for a horizontal bar,
@@ -43,54 +48,6 @@ impl ScaleBar {
 
 /// What the finder looks for, for messages when it finds nothing.
 pub const LOOKED_FOR: &str = "a horizontal ruled line at least 40 px long with three or more evenly spaced ticks (or a vertical one with five and numerals beside them), apart from the walls";
-
-/// How far from the line, in pixels, the paper must be clear for the line to count as thin
-/// (a bar up to 2 × CLEAR − 1 px thick); ticks and lettering that reach this far leave gaps.
-const CLEAR: usize = 4;
-/// Shortest bar (px): on shorter lines a pixel is more than 2.5 % of the scale, and the short
-/// lines that pass the other tests were edges of buildings.
-const MIN_LENGTH: f64 = 40.0;
-/// The longest gap (ticks, numerals touching the line, breaks in the engraving) a bar may have.
-const MAX_GAP: usize = 6;
-/// Share of the bar's length where the thin line is seen.
-const MIN_COVER: f64 = 0.8;
-/// Graduations a bar must show (its two ends and at least one division) …
-const MIN_TICKS: usize = 3;
-/// … at most one per this many pixels (hachures and hatching are denser).
-const MIN_TICK_SPACING: usize = 6;
-/// A line end without a tick is the bar's end when it lies at most this many units past the
-/// outer tick (Armitage's plain halves are five units) …
-const MAX_PLAIN_UNITS: f64 = 6.0;
-/// … of at least this many pixels …
-const MIN_PLAIN_UNIT: f64 = 12.0;
-/// … and the ticks span this share of the line (Armitage's 0–300 ft bars may show ticks
-/// only up to 100).
-const MIN_TICKED_SHARE: f64 = 0.3;
-/// Share of the gaps between ticks that must be whole multiples or fractions of the unit.
-const MIN_EVEN: f64 = 0.75;
-/// Ticks are short strokes: ink that runs on this far from the line is a crossing line.
-const MAX_TICK: usize = 14;
-/// Share of the bar's length (ticks aside) with clear paper for 10 px on its clearer side …
-const MIN_CLEAR_SIDE: f64 = 0.9;
-/// … and on its other side, where the numerals are.
-const MIN_LETTERED_SIDE: f64 = 0.4;
-/// With lettering on both sides: share of the clearer side free within 10 px …
-const MIN_LETTERED_BOTH: f64 = 0.6;
-/// … and of both sides free 16–30 px out.
-const MIN_FAR_CLEAR_BOTH: f64 = 0.7;
-/// Distances from the line (px) beyond its numerals, where the paper must be clear …
-const FAR: (isize, isize) = (16, 30);
-/// … along this share of the bar: buildings' outlines have walls there.
-const MIN_FAR_CLEAR: f64 = 0.7;
-/// Ticks a vertical bar must show, every gap a whole multiple or fraction of the unit …
-const MIN_VERTICAL_TICKS: usize = 5;
-/// … and ticks that must have numerals beside them.
-const MIN_NUMBERED: usize = 3;
-/// How close the castle's walls may come to a bar.
-const CASTLE_MARGIN: usize = 8;
-/// Share of the bar's length along which the paper on one side is the open sheet around the
-/// drawing (connected to the sheet's border), not a room or courtyard of the castle.
-const MIN_OPEN: f64 = 0.6;
 
 /// Finds the scale bar. Ink that belongs to the castle (the largest 8-connected region) is
 /// left out; in the rest, every row is scanned for a thin straight line at least 40 px and 6 %
@@ -187,50 +144,6 @@ fn sheet_around_the_drawing(bin: &GrayImage) -> Vec<bool> {
     }
     outside[0] = false;
     paper.labels.iter().map(|&l| outside[l as usize]).collect()
-}
-
-/// The masks, read along rows: position `along` (x) on line `line` (y).
-struct Grid<'a> {
-    ink: &'a [bool],
-    castle: &'a [bool],
-    open: &'a [bool],
-    w: usize,
-    h: usize,
-}
-
-impl Grid<'_> {
-    /// Length of a line and the number of lines.
-    fn dims(&self) -> (usize, usize) {
-        (self.w, self.h)
-    }
-
-    fn index(&self, along: usize, line: isize) -> Option<usize> {
-        if line < 0 || line as usize >= self.h || along >= self.w {
-            return None;
-        }
-        Some(line as usize * self.w + along)
-    }
-
-    /// Ink at position `along` on line `line`; outside the image is paper.
-    fn at(&self, along: usize, line: isize) -> bool {
-        self.index(along, line).is_some_and(|i| self.ink[i])
-    }
-
-    /// Any ink at the position, the castle's included.
-    fn any_ink_at(&self, along: usize, line: isize) -> bool {
-        self.index(along, line)
-            .is_some_and(|i| self.ink[i] || self.castle[i])
-    }
-
-    /// The castle's own ink at the position.
-    fn castle_at(&self, along: usize, line: isize) -> bool {
-        self.index(along, line).is_some_and(|i| self.castle[i])
-    }
-
-    /// Open sheet at the position; outside the image counts as open.
-    fn open_at(&self, along: usize, line: isize) -> bool {
-        self.index(along, line).is_none_or(|i| self.open[i])
-    }
 }
 
 #[cfg(test)]

@@ -1,8 +1,12 @@
 //! The scan for a bar along the lines of a `Grid` (rows; columns via the transposed masks):
 //! thin ruled lines, their graduations and the tests that tell a bar from a wall's outline.
 
+use super::grid::Grid;
+use super::rules::{
+    CASTLE_MARGIN, CLEAR, MAX_GAP, MAX_PLAIN_UNITS, MAX_TICK, MIN_COVER, MIN_EVEN, MIN_LENGTH,
+    MIN_PLAIN_UNIT, MIN_TICK_SPACING, MIN_TICKED_SHARE, MIN_TICKS, MIN_VERTICAL_TICKS,
+};
 use super::ticks::{Ticks, reach};
-use super::*;
 
 /// The longest bar along the grid's lines: (start, end, line).
 pub(super) fn longest_bar(g: &Grid, numbered: bool) -> Option<(usize, usize, usize)> {

@@ -1,7 +1,11 @@
 //! Graduations of a candidate bar: ticks against the line's typical thickness, their centres
 //! and heights, and the paper and numerals beside them.
 
-use super::*;
+use super::grid::Grid;
+use super::rules::{
+    FAR, MAX_GAP, MAX_TICK, MIN_CLEAR_SIDE, MIN_FAR_CLEAR, MIN_FAR_CLEAR_BOTH, MIN_LETTERED_BOTH,
+    MIN_LETTERED_SIDE, MIN_NUMBERED, MIN_OPEN,
+};
 
 /// How far ink reaches from the line on each side at `along` (contiguous, capped at
 /// MAX_TICK + 1, which marks a line that crosses rather than a tick).

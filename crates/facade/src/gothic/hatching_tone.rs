@@ -5,10 +5,10 @@
 
 use image::{GrayImage, Luma};
 use imageproc::filter::gaussian_blur_f32;
-use imageproc::gradients::{horizontal_prewitt, vertical_prewitt};
+use raster::edges::prewitt_edges;
 use serde::{Deserialize, Serialize};
 
-use super::likelihood::prewitt_edges;
+use super::likelihood::edge_rule;
 
 /// What counts as hatching.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -39,14 +39,14 @@ impl Default for HatchParams {
 /// directions coherent to at least `min_coherence`.
 pub fn hatched(gray: &GrayImage, edge_threshold: f64, p: &HatchParams) -> Vec<bool> {
     let (w, h) = (gray.width() as usize, gray.height() as usize);
-    let edges = prewitt_edges(gray, edge_threshold);
-    let (gx, gy) = (horizontal_prewitt(gray), vertical_prewitt(gray));
+    let edges = prewitt_edges(gray, &edge_rule(edge_threshold));
+    let (gx, gy) = (&edges.gradient.gx, &edges.gradient.gy);
     // Per edge pixel: 1 and its doubled-angle orientation (cos 2θ, sin 2θ), so a stroke's two
     // sides (opposite gradients) and all parallel strokes add up.
     let mut count = vec![0.0; w * h];
     let mut c2 = vec![0.0; w * h];
     let mut s2 = vec![0.0; w * h];
-    for (i, e) in edges.as_raw().iter().enumerate() {
+    for (i, e) in edges.mask.as_raw().iter().enumerate() {
         if *e == 0 {
             continue;
         }

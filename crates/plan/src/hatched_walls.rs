@@ -172,6 +172,7 @@ fn pattern_gaps(line: &[bool], p: &HatchParams, gaps: &mut Vec<u32>) {
 mod tests {
     use super::*;
     use image::Luma;
+    use raster::morphology::{Norm, open_close};
 
     fn params() -> HatchParams {
         HatchParams {
@@ -249,7 +250,7 @@ mod tests {
     fn diagonal_hatching_becomes_solid_a_room_stays_open() {
         let mut img = hatched_wall_and_room(false);
         // Without the step the opening of §5.1.2 (4) erases the 1-px outlines and hatching.
-        let opened = crate::binarize::open_close(&img);
+        let opened = open_close(&img, Norm::LInf, 1);
         assert_eq!(opened.get_pixel(50, 30)[0], 0);
         let filled = fill_hatching(&mut img, &params());
         // The band's paper (less its strokes) is filled, but for gaps against the outlines
@@ -262,7 +263,7 @@ mod tests {
             filled <= paper && 10 * filled >= 8 * paper,
             "{filled} of {paper}"
         );
-        let opened = crate::binarize::open_close(&img);
+        let opened = open_close(&img, Norm::LInf, 1);
         for x in 14..106 {
             for y in 23..41 {
                 assert_eq!(opened.get_pixel(x, y)[0], 255, "wall at ({x}, {y})");

@@ -6,9 +6,9 @@
 
 use image::GrayImage;
 use imageproc::distance_transform::{Norm, distance_transform};
-use imageproc::morphology::open;
+use raster::components::{Connectivity, components};
+use raster::morphology::top_hat;
 
-use crate::binarize::{Connectivity, components};
 use crate::strokes::{Grid, Stroke, angle_between, strokes};
 
 /// Strokes of one band differ in direction by at most this (radians): radial hachures turn
@@ -31,16 +31,7 @@ pub fn drop_hachures(img: &mut GrayImage, radius: u8, max_length: f64) -> usize 
         return 0;
     }
     let (w, h) = (img.width() as usize, img.height() as usize);
-    let kept = open(img, Norm::LInf, radius);
-    let raw = img.as_raw();
-    let thin = GrayImage::from_fn(img.width(), img.height(), |x, y| {
-        let i = y as usize * w + x as usize;
-        image::Luma([if raw[i] == 255 && kept.as_raw()[i] == 0 {
-            255
-        } else {
-            0
-        }])
-    });
+    let (kept, thin) = top_hat(img, Norm::LInf, radius);
     let c = components(&thin, 255, Connectivity::Eight);
     let candidates: Vec<Stroke> = strokes(&c, w, |l| c.sizes[l] >= 3)
         .into_iter()
@@ -104,6 +95,7 @@ pub fn drop_hachures(img: &mut GrayImage, radius: u8, max_length: f64) -> usize 
 mod tests {
     use super::*;
     use image::Luma;
+    use raster::morphology::open_close;
 
     /// A 160 × 100 sheet: an 8-px wall along row 50..58 (x 20..140) with a band of 2-px
     /// hachures 12 px long every 5 px below it (hanging from the wall, free at the bottom),
@@ -148,13 +140,10 @@ mod tests {
                 },
             ])
         });
-        let opened = crate::binarize::open_close(&img);
+        let opened = open_close(&img, Norm::LInf, 1);
         assert_eq!(opened.get_pixel(13, 15)[0], 255);
         let mut dropped = img.clone();
         assert!(drop_hachures(&mut dropped, 2, 30.0) > 0);
-        assert_eq!(
-            crate::binarize::open_close(&dropped).get_pixel(13, 15)[0],
-            0
-        );
+        assert_eq!(open_close(&dropped, Norm::LInf, 1).get_pixel(13, 15)[0], 0);
     }
 }

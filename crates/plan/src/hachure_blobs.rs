@@ -1,12 +1,12 @@
-//! Dense hachures that touch each other (Langres): an addition to §5.1.2 beside
-//! [`crate::hachures`]. Such a band is one ink blob riddled with specks of paper, which step (2)
-//! fills, so the band turns into a solid wall; the stroke test never sees its strokes.
+//! Blobs of merged hachures removed: dense hachures that touch each other (Langres), an
+//! addition to §5.1.2 beside [`crate::hachure_bands`]. Such a band is one ink blob riddled with
+//! specks of paper, which step (2) fills, so the band turns into a solid wall; the stroke test
+//! never sees its strokes.
 
 use image::{GrayImage, Rgb, RgbImage};
-use imageproc::distance_transform::{Norm, distance_transform};
 use imageproc::integral_image::{integral_image, sum_image_pixels};
-
-use crate::binarize::{Connectivity, components};
+use raster::components::{Connectivity, components};
+use raster::morphology::{Norm, distance_to_background};
 
 /// Removes ink where paper specks are dense: an ink pixel goes when, in the square of
 /// half-side `window` around it, at least `min_speck_share` of the pixels are specks (enclosed
@@ -16,7 +16,7 @@ use crate::binarize::{Connectivity, components};
 /// merged hachures is all specks between strokes. Solid ink, `core` pixels or more from the
 /// paper and specks, and the window around it stay: a black tower round a spiral stair
 /// (Narbonne) or a densely hatched wall is not a band. Returns the pixels removed.
-pub fn drop_hachure_texture(
+pub fn drop_hachure_blobs(
     img: &mut GrayImage,
     window: u32,
     core: u8,
@@ -43,10 +43,7 @@ pub fn drop_hachure_texture(
                 && (b[3] as usize) + 1 < h
         })
         .collect();
-    let paper_image = GrayImage::from_fn(img.width(), img.height(), |x, y| {
-        image::Luma([255 - img.get_pixel(x, y)[0]])
-    });
-    let to_paper = distance_transform(&paper_image, Norm::LInf);
+    let to_paper = distance_to_background(img, Norm::LInf);
     // Per pixel, as the three channels of one integral image: a speck pixel, the mark of a
     // speck (its first pixel in raster order, so a window counts distinct specks), solid ink.
     let mut seen = vec![false; paper.sizes.len()];
@@ -118,7 +115,7 @@ mod tests {
     fn merged_hachures_go_walls_and_partitions_stay() {
         let mut img = room_wall_and_band();
         let before = img.clone();
-        let removed = drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4);
+        let removed = drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4);
         assert!(removed > 0);
         let band_left = (30..60)
             .flat_map(|y| (110..180).map(move |x| (x, y)))
@@ -156,7 +153,7 @@ mod tests {
                 0
             }])
         });
-        drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4);
+        drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4);
         for (x, y, p) in img.enumerate_pixels() {
             let tower = (10..70).contains(&x) && (10..70).contains(&y);
             if tower && !stair(x, y) {
@@ -178,6 +175,6 @@ mod tests {
                 }],
             )
         });
-        assert_eq!(drop_hachure_texture(&mut img, 6, 4, 25, 0.15, 4), 0);
+        assert_eq!(drop_hachure_blobs(&mut img, 6, 4, 25, 0.15, 4), 0);
     }
 }

@@ -1,0 +1,91 @@
+//! The settings of the Gothic pipeline (§4.2 fixes none of its thresholds) and the progress
+//! it reports; re-exported from `facade::gothic`.
+
+use serde::{Deserialize, Serialize};
+
+use super::hatching_tone;
+use super::optimise::ShapeBounds;
+
+/// Every threshold of the Gothic pipeline. The dissertation fixes none of them (§4.2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GothicParams {
+    /// Prewitt magnitude threshold, as a share of the 99th-percentile magnitude.
+    pub edge_threshold: f64,
+    /// Contour sample step (px); sub-pixel as §4.2 asks.
+    pub step: f64,
+    /// Smallest distance-transform peak (px) that seeds an element.
+    pub min_seed_radius: f32,
+    /// Most seeds per image (bounds the work on busy images).
+    pub max_seeds: usize,
+    /// Most conjugate-gradient iterations per maximisation.
+    pub max_iters: u64,
+    /// Smallest element width (px).
+    pub min_width: f64,
+    /// Smallest element height h + v (px).
+    pub min_height: f64,
+    /// Significance: largest mean distance ∮D ds / ∮ds (px) of a kept element.
+    pub max_mean_distance: f64,
+    /// Significance: smallest share of the contour within 1.5 px of an edge.
+    pub min_support: f64,
+    /// Bounding-box IoU at which two detections are the same element.
+    pub duplicate_iou: f64,
+    /// Shape similarity for grouping: relative tolerance on h, w, v ...
+    pub group_relative: f64,
+    /// ... plus this many pixels.
+    pub group_absolute: f64,
+    /// Most rounds of grouping and enclosing-arch search (levels of figure 4.4).
+    pub max_levels: usize,
+    /// Slack (px) when testing whether one element contains another.
+    pub nesting_tolerance: f64,
+    /// Hatching suppression before the edges (engravings; [`hatching_tone`]), off for
+    /// photographs.
+    pub hatching: Option<hatching_tone::HatchParams>,
+}
+
+impl Default for GothicParams {
+    fn default() -> Self {
+        GothicParams {
+            edge_threshold: 0.2,
+            step: 0.5,
+            min_seed_radius: 8.0,
+            max_seeds: 400,
+            max_iters: 60,
+            min_width: 16.0,
+            min_height: 24.0,
+            max_mean_distance: 0.8,
+            min_support: 0.9,
+            duplicate_iou: 0.6,
+            group_relative: 0.06,
+            group_absolute: 2.0,
+            max_levels: 3,
+            nesting_tolerance: 3.0,
+            hatching: None,
+        }
+    }
+}
+
+impl GothicParams {
+    pub fn bounds(&self) -> ShapeBounds {
+        ShapeBounds {
+            min_width: self.min_width,
+            min_height: self.min_height,
+        }
+    }
+}
+
+/// How far the element pipeline has got, for a progress bar (a long photo can take minutes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// Edges and their distance transform.
+    Edges,
+    /// `done` of `total` starting shapes maximised.
+    Detecting { done: usize, total: usize },
+    /// Grouping round `level` (from 1) of at most `of`: `done` of `total` clusters of similar
+    /// elements re-estimated jointly, with their enclosing arches.
+    Organising {
+        level: usize,
+        of: usize,
+        done: usize,
+        total: usize,
+    },
+}

@@ -1,0 +1,111 @@
+//! What the §5.1.6 heuristics look at: the simplified graph, the wall and skeleton masks, the
+//! faces with their measurements ([`Scene`]), and the geometry of §5.1.6 (4)'s convexity test
+//! on it (an edge's apex, what lies beyond it), which `label`'s test (4) and `inner_towers`'
+//! (4') share. `Scene` and `FaceInfo` are re-exported from `plan::label`.
+
+use crate::graph::Graph;
+use crate::thin::Mask;
+
+/// Per-face measurements the heuristics use.
+#[derive(Debug, Clone, Default)]
+pub struct FaceInfo {
+    /// White (open) pixels the face owns.
+    pub area: usize,
+    pub sum: [f64; 2],
+    pub touches_border: bool,
+    /// Largest distance from a white pixel to a wall (half the widest width).
+    pub max_inset: f64,
+}
+
+/// Inputs of the heuristics: the simplified graph and the pixel maps behind it.
+pub struct Scene<'a> {
+    pub walls: &'a Mask,
+    pub skel: &'a Mask,
+    pub graph: &'a Graph,
+    pub face_of: &'a [u32],
+    pub faces: &'a [FaceInfo],
+    /// Faces on either side of each edge.
+    pub edge_faces: &'a [Vec<usize>],
+    /// Wall thickness at each edge, pixels.
+    pub thickness: &'a [f64],
+    /// Also test walls inside the enceinte as towers of an inner ward ((4') in [`heuristics`](crate::label::heuristics)).
+    pub inner_ward_towers: bool,
+    /// Faces on the outer wall at least this fraction of the courtyard's area are further
+    /// wards ((5') in [`heuristics`](crate::label::heuristics)); 0 keeps one courtyard as §5.1.6 does.
+    pub ward_ratio: f64,
+}
+
+/// The farthest point of an edge's chain from its chord, as §5.1.6 (4)'s convexity test sees it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Apex {
+    pub point: (f64, f64),
+    /// Unit vector from the chord to the apex.
+    pub normal: (f64, f64),
+}
+
+/// The apex of the edge when its chain bulges at least `bulge` of its chord (and 1.5 wall
+/// thicknesses) away from it, and chord and bulge are small against the castle's `extent`.
+pub(crate) fn bulge_apex(s: &Scene, e: usize, extent: f64, bulge: f64) -> Option<Apex> {
+    let edge = &s.graph.edges[e];
+    let a = &s.graph.vertices[edge.from];
+    let b = &s.graph.vertices[edge.to];
+    let (ax, ay) = (a.x, a.y);
+    let (dx, dy) = (b.x - ax, b.y - ay);
+    let len = dx.hypot(dy);
+    let mut best = (0.0f64, (ax, ay), (0.0, 0.0));
+    for &(px, py) in &edge.points {
+        let (px, py) = (px as f64, py as f64);
+        let (foot, dist) = if len < 2.0 {
+            ((ax, ay), (px - ax).hypot(py - ay))
+        } else {
+            let t = ((px - ax) * dx + (py - ay) * dy) / (len * len);
+            let f = (ax + t * dx, ay + t * dy);
+            (f, (px - f.0).hypot(py - f.1))
+        };
+        if dist > best.0 {
+            best = (dist, (px, py), foot);
+        }
+    }
+    let (dev, p, foot) = best;
+    let t = s.thickness[e];
+    if dev < (bulge * len).max(1.5 * t).max(3.0) || len > 0.45 * extent || dev > 0.45 * extent {
+        return None;
+    }
+    Some(Apex {
+        point: p,
+        normal: ((p.0 - foot.0) / dev, (p.1 - foot.1) / dev),
+    })
+}
+
+/// What lies just beyond an apex, outwards through its wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Beyond {
+    /// Off the image: the surroundings.
+    Off,
+    Face(usize),
+    /// Wall further than the edge's thickness and 8 px.
+    Wall,
+}
+
+/// The face just beyond the apex, outwards through the wall.
+pub(crate) fn beyond_apex(s: &Scene, e: usize, apex: Apex) -> Beyond {
+    let (p, (nx, ny)) = (apex.point, apex.normal);
+    let w = s.walls.width as i32;
+    let h = s.walls.height as i32;
+    let reach = (s.thickness[e] + 8.0).ceil() as i32;
+    for k in 1..=reach {
+        let (qx, qy) = (
+            (p.0 + nx * k as f64).round() as i32,
+            (p.1 + ny * k as f64).round() as i32,
+        );
+        if qx < 0 || qy < 0 || qx >= w || qy >= h {
+            return Beyond::Off;
+        }
+        let i = (qy * w + qx) as usize;
+        if s.skel.data[i] == 1 || s.walls.data[i] == 1 {
+            continue;
+        }
+        return Beyond::Face(s.face_of[i] as usize);
+    }
+    Beyond::Wall
+}
