@@ -267,32 +267,24 @@ pub struct CornersEvalArgs {
 mod flag_tests {
     use std::path::PathBuf;
 
-    use clap::Parser;
-
     use super::{CornersArgs, CornersEvalArgs};
-    use crate::cli::{Cli, Command};
+    use crate::flags::testing::parse;
 
     fn corners_args(extra: &[&str]) -> Result<CornersArgs, clap::Error> {
         let mut argv = vec!["castellan", "corners", "a.png", "-o", "c.json"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Corners(a) => a,
-            _ => unreachable!(),
-        })
+        parse::<CornersArgs>(&argv[2..])
     }
 
     fn eval_args(extra: &[&str]) -> Result<CornersEvalArgs, clap::Error> {
         let mut argv = vec!["castellan", "corners-eval", "graf", "wall", "-o", "out"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::CornersEval(a) => a,
-            _ => unreachable!(),
-        })
+        parse::<CornersEvalArgs>(&argv[2..])
     }
 
     #[test]
     fn corners_output_is_required_and_defaults_are_the_library_defaults() {
-        assert!(Cli::try_parse_from(["castellan", "corners", "a.png"]).is_err());
+        assert!(parse::<CornersArgs>(&["a.png"]).is_err());
         let a = corners_args(&[]).unwrap();
         assert_eq!(a.output, PathBuf::from("c.json"));
         assert_eq!(a.overlay, None);
@@ -398,7 +390,7 @@ mod flag_tests {
             vec![PathBuf::from("graf"), PathBuf::from("wall")]
         );
         assert_eq!(a.output, PathBuf::from("out"));
-        assert!(Cli::try_parse_from(["castellan", "corners-eval", "-o", "out"]).is_err());
+        assert!(parse::<CornersEvalArgs>(&["-o", "out"]).is_err());
     }
 
     #[test]

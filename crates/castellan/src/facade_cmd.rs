@@ -86,10 +86,8 @@ pub struct FacadeArgs {
 mod flag_tests {
     use std::path::PathBuf;
 
-    use clap::Parser;
-
     use super::FacadeArgs;
-    use crate::cli::{Cli, Command};
+    use crate::flags::testing::parse;
 
     fn facade_args(extra: &[&str]) -> Result<FacadeArgs, clap::Error> {
         let mut argv = vec![
@@ -102,18 +100,13 @@ mod flag_tests {
             "f.json",
         ];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Facade(a) => a,
-            _ => unreachable!("parsed a facade command line"),
-        })
+        parse::<FacadeArgs>(&argv[2..])
     }
 
     #[test]
     fn facade_training_and_output_are_required() {
-        assert!(Cli::try_parse_from(["castellan", "facade", "f.png", "-o", "f.json"]).is_err());
-        assert!(
-            Cli::try_parse_from(["castellan", "facade", "f.png", "--training", "t.json"]).is_err()
-        );
+        assert!(parse::<FacadeArgs>(&["f.png", "-o", "f.json"]).is_err());
+        assert!(parse::<FacadeArgs>(&["f.png", "--training", "t.json"]).is_err());
         let a = facade_args(&[]).unwrap();
         assert_eq!(
             (a.training, a.output),

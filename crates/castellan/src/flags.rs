@@ -83,6 +83,25 @@ pub fn odd_window(s: &str) -> Result<usize, String> {
     Ok(w)
 }
 
+/// What each command's flag tests parse with: one command's flags alone, without the command
+/// tree (`cli.rs` names every command; the commands' tests need not know it).
+#[cfg(test)]
+pub mod testing {
+    use clap::{Args, Parser};
+
+    #[derive(Parser)]
+    struct One<A: Args> {
+        #[command(flatten)]
+        args: A,
+    }
+
+    /// `argv`: the command's arguments, after `castellan COMMAND`.
+    pub fn parse<A: Args>(argv: &[&str]) -> Result<A, clap::Error> {
+        One::<A>::try_parse_from(std::iter::once("castellan").chain(argv.iter().copied()))
+            .map(|one| one.args)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

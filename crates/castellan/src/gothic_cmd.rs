@@ -195,23 +195,18 @@ pub struct GothicArgs {
 mod flag_tests {
     use std::path::PathBuf;
 
-    use clap::Parser;
-
     use super::GothicArgs;
-    use crate::cli::{Cli, Command};
+    use crate::flags::testing::parse;
 
     fn gothic_args(extra: &[&str]) -> Result<GothicArgs, clap::Error> {
         let mut argv = vec!["castellan", "gothic", "g.png", "-o", "g.json"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Gothic(a) => a,
-            _ => unreachable!("parsed a gothic command line"),
-        })
+        parse::<GothicArgs>(&argv[2..])
     }
 
     #[test]
     fn gothic_output_is_required() {
-        assert!(Cli::try_parse_from(["castellan", "gothic", "g.png"]).is_err());
+        assert!(parse::<GothicArgs>(&["g.png"]).is_err());
         let a = gothic_args(&[]).unwrap();
         assert_eq!(
             (a.image, a.output),

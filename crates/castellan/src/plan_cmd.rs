@@ -160,23 +160,18 @@ pub struct PlanArgs {
 mod flag_tests {
     use std::path::PathBuf;
 
-    use clap::Parser;
-
     use super::PlanArgs;
-    use crate::cli::{Cli, Command};
+    use crate::flags::testing::parse;
 
     fn plan_args(extra: &[&str]) -> Result<PlanArgs, clap::Error> {
         let mut argv = vec!["castellan", "plan", "p.png", "-o", "plan.json"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Plan(a) => a,
-            _ => unreachable!("plan parsed as another command"),
-        })
+        parse::<PlanArgs>(&argv[2..])
     }
 
     #[test]
     fn plan_output_is_required() {
-        assert!(Cli::try_parse_from(["castellan", "plan", "p.png"]).is_err());
+        assert!(parse::<PlanArgs>(&["p.png"]).is_err());
         let a = plan_args(&[]).unwrap();
         assert_eq!(a.output, PathBuf::from("plan.json"));
         assert_eq!(a.image, Some(PathBuf::from("p.png")));
@@ -184,29 +179,12 @@ mod flag_tests {
 
     #[test]
     fn plan_batch_flag_takes_a_folder_instead_of_an_image() {
-        let a = Cli::try_parse_from(["castellan", "plan", "--batch", "in", "-o", "out"]).unwrap();
-        match a.command {
-            Command::Plan(a) => {
-                assert_eq!(a.batch, Some(PathBuf::from("in")));
-                assert_eq!(a.image, None);
-            }
-            _ => unreachable!("plan parsed as another command"),
-        }
-        assert!(Cli::try_parse_from(["castellan", "plan", "-o", "out"]).is_err());
+        let a = parse::<PlanArgs>(&["--batch", "in", "-o", "out"]).unwrap();
+        assert_eq!(a.batch, Some(PathBuf::from("in")));
+        assert_eq!(a.image, None);
+        assert!(parse::<PlanArgs>(&["-o", "out"]).is_err());
         assert!(plan_args(&["--batch", "in"]).is_err());
-        assert!(
-            Cli::try_parse_from([
-                "castellan",
-                "plan",
-                "--batch",
-                "in",
-                "-o",
-                "o",
-                "--svg",
-                "s"
-            ])
-            .is_err()
-        );
+        assert!(parse::<PlanArgs>(&["--batch", "in", "-o", "o", "--svg", "s"]).is_err());
     }
 
     #[test]

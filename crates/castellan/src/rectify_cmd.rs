@@ -87,23 +87,18 @@ pub struct RectifyArgs {
 mod flag_tests {
     use std::path::PathBuf;
 
-    use clap::Parser;
-
     use super::RectifyArgs;
-    use crate::cli::{Cli, Command};
+    use crate::flags::testing::parse;
 
     fn rectify_args(extra: &[&str]) -> Result<RectifyArgs, clap::Error> {
         let mut argv = vec!["castellan", "rectify", "p.jpg", "-o", "r.png"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Rectify(a) => a,
-            _ => unreachable!("parsed a rectify command line"),
-        })
+        parse::<RectifyArgs>(&argv[2..])
     }
 
     #[test]
     fn rectify_output_is_required() {
-        assert!(Cli::try_parse_from(["castellan", "rectify", "p.jpg"]).is_err());
+        assert!(parse::<RectifyArgs>(&["p.jpg"]).is_err());
         assert_eq!(rectify_args(&[]).unwrap().output, PathBuf::from("r.png"));
     }
 

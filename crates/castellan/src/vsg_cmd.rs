@@ -247,21 +247,16 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::{Cli, Command, VsgCommand};
-    use clap::Parser;
-
+    use crate::flags::testing::parse;
     fn run_args(extra: &[&str]) -> Result<VsgRunArgs, clap::Error> {
         let mut argv = vec!["castellan", "vsg", "run", "p.vsg", "-o", "m.glb"];
         argv.extend_from_slice(extra);
-        Cli::try_parse_from(argv).map(|c| match c.command {
-            Command::Vsg(VsgCommand::Run(a)) => a,
-            _ => unreachable!(),
-        })
+        parse::<VsgRunArgs>(&argv[3..])
     }
 
     #[test]
     fn output_is_required() {
-        assert!(Cli::try_parse_from(["castellan", "vsg", "run", "p.vsg"]).is_err());
+        assert!(parse::<VsgRunArgs>(&["p.vsg"]).is_err());
         assert_eq!(run_args(&[]).unwrap().output, PathBuf::from("m.glb"));
     }
 
