@@ -109,21 +109,10 @@ pub fn components_where(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use image::Luma;
-
-    fn image(rows: &[&str]) -> GrayImage {
-        GrayImage::from_fn(rows[0].len() as u32, rows.len() as u32, |x, y| {
-            Luma([if rows[y as usize].as_bytes()[x as usize] == b'#' {
-                255
-            } else {
-                0
-            }])
-        })
-    }
 
     #[test]
     fn diagonal_neighbours_join_only_with_eight_connectivity() {
-        let img = image(&["#..#", ".#..", "....", "##.#"]);
+        let img = crate::literal::mask(&["#..#", ".#..", "....", "##.#"]);
         let four = components(&img, 255, Connectivity::Four);
         assert_eq!(four.sizes, vec![0, 1, 1, 1, 2, 1]);
         let eight = components(&img, 255, Connectivity::Eight);
@@ -143,7 +132,7 @@ mod tests {
     #[test]
     fn background_regions_and_masks_label_alike() {
         // The paper of a ring: the outside and the hole, apart under 4-connectivity.
-        let img = image(&["#####", "#...#", "#####", "....."]);
+        let img = crate::literal::mask(&["#####", "#...#", "#####", "....."]);
         let paper = components(&img, 0, Connectivity::Four);
         assert_eq!(paper.sizes, vec![0, 3, 5]);
         assert_eq!(paper.bbox[1], [1, 1, 3, 1]);

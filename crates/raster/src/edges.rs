@@ -204,22 +204,6 @@ mod tests {
         GrayImage::from_fn(6, 5, |x, _| Luma([if x < 3 { 0 } else { 200 }]))
     }
 
-    fn columns(mask: &GrayImage) -> Vec<String> {
-        (0..mask.height())
-            .map(|y| {
-                (0..mask.width())
-                    .map(|x| {
-                        if mask.get_pixel(x, y)[0] == 255 {
-                            '#'
-                        } else {
-                            '.'
-                        }
-                    })
-                    .collect()
-            })
-            .collect()
-    }
-
     fn rule(reference: Reference, thinning: Thinning) -> EdgeRule {
         EdgeRule {
             reference,
@@ -242,7 +226,7 @@ mod tests {
     fn along_the_gradient_a_step_keeps_one_pixel_off_the_border() {
         let e = prewitt_edges(&step(), &rule(Reference::NonZero(0.98), Thinning::Gradient));
         assert_eq!(
-            columns(&e.mask),
+            crate::literal::rows(&e.mask),
             ["......", "..#...", "..#...", "..#...", "......"]
         );
         assert_eq!(
@@ -254,7 +238,7 @@ mod tests {
     #[test]
     fn along_the_dominant_axis_a_step_keeps_both_pixels() {
         let e = prewitt_edges(&step(), &rule(Reference::All(0.99), Thinning::Axis));
-        assert_eq!(columns(&e.mask), ["..##.."; 5]);
+        assert_eq!(crate::literal::rows(&e.mask), ["..##.."; 5]);
     }
 
     #[test]
@@ -270,11 +254,20 @@ mod tests {
             }])
         });
         let mut r = rule(Reference::All(0.99), Thinning::Axis);
-        assert_eq!(columns(&prewitt_edges(&img, &r).mask)[0], "..##........");
+        assert_eq!(
+            crate::literal::rows(&prewitt_edges(&img, &r).mask)[0],
+            "..##........"
+        );
         r.share = 0.05;
-        assert_eq!(columns(&prewitt_edges(&img, &r).mask)[0], "..##...##...");
+        assert_eq!(
+            crate::literal::rows(&prewitt_edges(&img, &r).mask)[0],
+            "..##...##..."
+        );
         r.floor = 100.0;
-        assert_eq!(columns(&prewitt_edges(&img, &r).mask)[0], "..##........");
+        assert_eq!(
+            crate::literal::rows(&prewitt_edges(&img, &r).mask)[0],
+            "..##........"
+        );
     }
 
     #[test]

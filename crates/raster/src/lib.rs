@@ -13,4 +13,6 @@
 
 pub mod components;
 pub mod edges;
+#[cfg(test)]
+mod literal;
 pub mod morphology;

@@ -53,32 +53,7 @@ pub fn distance_to_background(img: &GrayImage, norm: Norm) -> GrayImage {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn mask(rows: &[&str]) -> GrayImage {
-        GrayImage::from_fn(rows[0].len() as u32, rows.len() as u32, |x, y| {
-            Luma([if rows[y as usize].as_bytes()[x as usize] == b'#' {
-                255
-            } else {
-                0
-            }])
-        })
-    }
-
-    fn rows(img: &GrayImage) -> Vec<String> {
-        (0..img.height())
-            .map(|y| {
-                (0..img.width())
-                    .map(|x| {
-                        if img.get_pixel(x, y)[0] == 255 {
-                            '#'
-                        } else {
-                            '.'
-                        }
-                    })
-                    .collect()
-            })
-            .collect()
-    }
+    use crate::literal::{mask, rows};
 
     /// A 3-px bar with a 1-px line off its end and a 1-px gap in the bar, 2 px from the
     /// border (imageproc's closing counts the outside of the image as foreground).
