@@ -31,7 +31,7 @@ pub fn safe_stem(name: &str) -> String {
 }
 
 /// The façade photos, cropped to each mapped façade; sets `texture` on the mapped façades.
-pub fn facade_textures(estimate: &mut Estimate, photos: &[FacadeEstimate]) -> Vec<Texture> {
+pub(crate) fn facade_textures(estimate: &mut Estimate, photos: &[FacadeEstimate]) -> Vec<Texture> {
     let mut out: Vec<Texture> = Vec::new();
     for s in &mut estimate.structures {
         for f in &mut s.facades {
@@ -66,7 +66,10 @@ pub fn facade_textures(estimate: &mut Estimate, photos: &[FacadeEstimate]) -> Ve
 
 /// Crops of every wall training box of every photo (rectified pixels), and their mean width in
 /// model units where the photo is mapped (for the real-scale projection of the samples).
-pub fn wall_samples(estimate: &Estimate, photos: &[FacadeEstimate]) -> (Vec<Texture>, Option<f64>) {
+pub(crate) fn wall_samples(
+    estimate: &Estimate,
+    photos: &[FacadeEstimate],
+) -> (Vec<Texture>, Option<f64>) {
     let mut out = Vec::new();
     let mut widths = Vec::new();
     for p in photos {

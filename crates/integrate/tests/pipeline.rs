@@ -1,0 +1,155 @@
+//! `integrate::pipeline` on the bundled synthetic project, its files served from memory: every
+//! stage reports, the progress steps add up, the products and overlays are named as the
+//! commands write them, and a missing or bad file is an error naming its PROJECT.toml entry.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Mutex;
+
+use integrate::pipeline::{self, Files, PipelineError, Progress, Stage};
+use integrate::project::Project;
+
+/// The project's files, read once into memory.
+struct Memory(BTreeMap<String, Vec<u8>>);
+
+impl Files for Memory {
+    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
+        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
+        image::load_from_memory(bytes).map_err(|e| format!("{name}: {e}"))
+    }
+
+    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
+        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
+        serde_json::from_slice(bytes).map_err(|e| format!("{name} is not {what}: {e}"))
+    }
+}
+
+fn demo() -> (Project, Memory) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
+    let mut files = BTreeMap::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        files.insert(name, std::fs::read(&path).unwrap());
+    }
+    let text = String::from_utf8(files["PROJECT.toml"].clone()).unwrap();
+    (Project::from_toml(&text).unwrap(), Memory(files))
+}
+
+#[test]
+fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
+    let (project, files) = demo();
+    let heard = Mutex::new(Vec::new());
+    let r = pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|p| {
+        heard.lock().unwrap().push(p)
+    })
+    .unwrap();
+    let heard = heard.into_inner().unwrap();
+    let steps = heard.iter().filter(|p| **p == Progress::Step).count() as u64;
+    assert_eq!(steps, pipeline::steps(&project));
+    let started: Vec<Stage> = heard
+        .iter()
+        .filter_map(|p| match p {
+            Progress::Started(s) => Some(*s),
+            Progress::Step => None,
+        })
+        .collect();
+    let order = [
+        Stage::Plan,
+        Stage::Facades,
+        Stage::Integrate,
+        Stage::Vsg,
+        Stage::Export,
+    ];
+    assert_eq!(started, order);
+    assert_eq!(r.stages.iter().map(|(s, _)| *s).collect::<Vec<_>>(), order);
+    for (stage, _) in &r.stages {
+        assert!(
+            r.exports.stats["stages_ms"][stage.name()].is_number(),
+            "{stage:?}"
+        );
+    }
+
+    // The keep received both photos, and the estimate names the crop of each.
+    let mapped: Vec<_> = r
+        .estimate
+        .structures
+        .iter()
+        .flat_map(|s| &s.facades)
+        .collect();
+    assert_eq!(mapped.len(), 2);
+    for f in &mapped {
+        let texture = f.texture.as_ref().unwrap();
+        assert!(r.textures.iter().any(|t| &t.name == texture), "{texture}");
+    }
+
+    let names: Vec<String> = r.files().unwrap().into_iter().map(|(n, _)| n).collect();
+    for expected in [
+        "overlays/plan_labels.png",
+        "overlays/keep_south_near_lines.png",
+        "overlays/keep_south_near_facade.png",
+        "overlays/keep_south_near_labels.png",
+        "overlays/keep_south_far_facade.png",
+        "plan.svg",
+        "model.vsg",
+        "model.glb",
+        "model.obj",
+        "model.mtl",
+        "preview.png",
+        "stats.json",
+        "estimate.json",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} in {names:?}"
+        );
+    }
+    // Every overlay the report shows has a legend naming its photo; the label image has none.
+    for o in &r.overlays {
+        match &o.caption {
+            Some(c) if o.name.contains("keep_south_far") => {
+                assert!(c.starts_with("keep_south_far.png: "), "{c}")
+            }
+            Some(_) => {}
+            None => assert!(o.name.ends_with("_labels.png"), "{}", o.name),
+        }
+    }
+    assert_eq!(
+        r.exports.terminals,
+        r.exports.stats["terminals"].as_u64().unwrap() as usize
+    );
+}
+
+#[test]
+fn a_missing_or_bad_file_names_its_entry() {
+    let (project, mut files) = demo();
+    files.0.remove("keep_south_far.training.json");
+    let e = pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|_| {})
+        .err()
+        .unwrap();
+    assert!(matches!(e, PipelineError::Entry { .. }), "{e}");
+    assert_eq!(
+        e.to_string(),
+        "[[facade]] #2 (image = \"keep_south_far.png\"): keep_south_far.training.json: no such file"
+    );
+
+    let (project, mut files) = demo();
+    files.0.insert("plan.png".into(), b"not a png".to_vec());
+    let e = pipeline::parse_plan(&project, &files).err().unwrap();
+    assert!(
+        e.to_string().starts_with("plan = \"plan.png\": plan.png: "),
+        "{e}"
+    );
+}
+
+#[test]
+fn training_boxes_have_one_rule_inline_or_from_their_file() {
+    let (project, files) = demo();
+    let from_file = pipeline::training(&project.facades[0], &files).unwrap();
+    let mut inline = project.facades[0].clone();
+    inline.training = integrate::project::TrainingSource::Inline(from_file.clone());
+    assert_eq!(pipeline::training(&inline, &files).unwrap(), from_file);
+    let mut missing = project.facades[0].clone();
+    missing.training = integrate::project::TrainingSource::File("gone.json".into());
+    assert!(pipeline::training(&missing, &files).is_err());
+}
