@@ -8,11 +8,12 @@ use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 use serde::Serialize;
 
-use super::shading::{ShadedMesh, shade};
-use super::{
-    ExportError, ExportOptions, Geometry, Palette, ShapeKey, Textures, check_model, finite_f32,
-    solid_mesh, solid_volume, unit,
+use super::common::{
+    Geometry, Palette, ShapeKey, check_model, finite_f32, solid_mesh, solid_volume, unit,
 };
+use super::error::ExportError;
+use super::options::{ExportOptions, TextureImage, Textures};
+use super::shading::{ShadedMesh, shade};
 use crate::tree::{Appearance, Model, NodeState};
 
 const GLB_MAGIC: u32 = 0x4654_6C67; // "glTF"
@@ -268,11 +269,7 @@ impl Builder {
 
     /// Embeds texture `name` (once) as an image in the binary chunk, drawn with the one
     /// repeating, linearly filtered sampler.
-    fn add_texture(
-        &mut self,
-        name: &str,
-        image: &super::TextureImage,
-    ) -> json::Index<json::Texture> {
+    fn add_texture(&mut self, name: &str, image: &TextureImage) -> json::Index<json::Texture> {
         if let Some(&t) = self.textures.get(name) {
             return t;
         }

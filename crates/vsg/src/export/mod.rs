@@ -2,63 +2,22 @@
 //! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
 //! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
 
+mod common;
+mod error;
 mod gltf;
 mod obj;
+mod options;
 mod shading;
 #[cfg(test)]
 mod tests;
 
-use crate::mesh::TriMesh;
-use crate::shape::{Primitive, ShapeType, Tessellation};
-use crate::tree::{Model, NodeId, Solid};
+// The public types, in files of their own (the writers import them, not this file).
+pub use error::ExportError;
+pub use options::{ExportOptions, TextureImage, Textures};
 
-/// How a model is exported.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ExportOptions {
-    /// How finely curved primitives are meshed.
-    pub tessellation: Tessellation,
-    /// Faces of one mesh meeting at more than this angle (degrees) get separate vertices, so
-    /// boxes look flat and cylinders smooth; normals are averaged across smaller angles.
-    pub crease_angle_deg: f64,
-    /// Real-world size of one texture repeat, in model units per texture width (and height):
-    /// texture coordinates are box-projected local positions divided by this, so a texture
-    /// embedded with [`to_glb_with_textures`] keeps its scale on faces of any size.
-    pub texture_scale: f64,
-}
-
-impl Default for ExportOptions {
-    fn default() -> Self {
-        ExportOptions {
-            tessellation: Tessellation::default(),
-            crease_angle_deg: 40.0,
-            texture_scale: 1.0,
-        }
-    }
-}
-
-/// Why a model could not be exported.
-#[derive(Debug, thiserror::Error)]
-pub enum ExportError {
-    #[error("node {node} refers to {what} {index}, but the model has only {len}")]
-    BadReference {
-        node: NodeId,
-        what: &'static str,
-        index: u32,
-        len: usize,
-    },
-    #[error("node {node} is not a well-formed tree node: {why}")]
-    BadTree { node: NodeId, why: &'static str },
-    #[error("the {kind} mesh is malformed: {why}")]
-    BadMesh { kind: &'static str, why: String },
-    #[error(
-        "{what} is not a finite 32-bit float, as glTF and OBJ store numbers: {value:?} (is the model out of bounds?)"
-    )]
-    NotFinite { what: String, value: Vec<f64> },
-    #[error("the GLB would be {bytes} bytes, more than the 4 GiB the format allows")]
-    TooLarge { bytes: u64 },
-    #[error("cannot serialize the glTF JSON: {0}")]
-    Json(#[from] serde_json::Error),
-}
+use crate::shape::Primitive;
+use crate::tree::Model;
+use common::Geometry;
 
 /// Writes `model` as a binary glTF 2.0 file: one node per model node (named by its symbol,
 /// with its local transform and shape data in `extras`), meshes on visible terminals only,
@@ -66,18 +25,6 @@ pub enum ExportError {
 pub fn to_glb(model: &Model, options: &ExportOptions) -> Result<Vec<u8>, ExportError> {
     to_glb_with_textures(model, options, &Textures::new())
 }
-
-/// An encoded texture image to embed in a GLB.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct TextureImage {
-    /// The file's bytes, PNG or JPEG.
-    pub bytes: Vec<u8>,
-    /// `"image/png"` or `"image/jpeg"`, matching `bytes`.
-    pub mime_type: String,
-}
-
-/// Texture images by the name an appearance gives (`appearance("texture", {...})`).
-pub type Textures = std::collections::BTreeMap<String, TextureImage>;
 
 /// Like [`to_glb`], and embeds the image of every texture a visible terminal uses that
 /// `textures` holds: materials get a `baseColorTexture` (tinted by their colour) and, when
@@ -121,186 +68,4 @@ pub fn to_obj(
             volume: &volume,
         },
     )
-}
-
-/// Meshing and volume of primitives: the public functions pass [`Primitive::mesh`] and
-/// [`Primitive::volume`], tests inject their own.
-pub(crate) struct Geometry<'a> {
-    pub mesh: &'a dyn Fn(&Primitive) -> TriMesh,
-    pub volume: &'a dyn Fn(&Primitive) -> f64,
-}
-
-/// Checks the references the exporters follow: symbols, appearances and a consistent,
-/// acyclic parent/child structure (children come after their parent, in creation order).
-pub(crate) fn check_model(model: &Model) -> Result<(), ExportError> {
-    let len = model.nodes.len();
-    for (i, node) in model.nodes.iter().enumerate() {
-        let id = i as NodeId;
-        if node.symbol as usize >= model.symbols.len() {
-            let len = model.symbols.len();
-            let index = node.symbol;
-            return Err(ExportError::BadReference {
-                node: id,
-                what: "symbol",
-                index,
-                len,
-            });
-        }
-        if node.appearance as usize >= model.appearances.len() {
-            let (index, len) = (node.appearance, model.appearances.len());
-            return Err(ExportError::BadReference {
-                node: id,
-                what: "appearance",
-                index,
-                len,
-            });
-        }
-        let end = node.first_child as u64 + node.child_count as u64;
-        if node.child_count > 0 && (node.first_child <= id || end > len as u64) {
-            return Err(ExportError::BadTree {
-                node: id,
-                why: "children out of range",
-            });
-        }
-        if node
-            .children()
-            .any(|c| model.nodes[c as usize].parent != Some(id))
-        {
-            return Err(ExportError::BadTree {
-                node: id,
-                why: "a child names another parent",
-            });
-        }
-        if let Some(p) = node.parent {
-            let parent = model.nodes.get(p as usize);
-            if p >= id || !parent.is_some_and(|n| n.children().contains(&id)) {
-                return Err(ExportError::BadTree {
-                    node: id,
-                    why: "not a child of its parent",
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Bit pattern of a primitive (terminals with equal keys share one mesh), or the node of a
-/// unique shape (each has its own mesh).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub(crate) enum ShapeKey {
-    Primitive {
-        kind: ShapeType,
-        params: [u64; 6],
-    },
-    Unique(NodeId),
-    /// A terminal under a photo (`appearance("photo", …)`): its texture coordinates depend on
-    /// where it lies in the photo's frame, so its mesh is its own.
-    Framed(NodeId),
-}
-
-impl ShapeKey {
-    pub fn of(s: &Solid) -> ShapeKey {
-        let p = match s {
-            Solid::Primitive(p) => p,
-            Solid::Unique(id, _) => return ShapeKey::Unique(*id),
-        };
-        let mut params = [0; 6];
-        for (slot, v) in params.iter_mut().zip(p.params()) {
-            *slot = v.to_bits();
-        }
-        ShapeKey::Primitive {
-            kind: p.kind,
-            params,
-        }
-    }
-}
-
-/// The mesh of a solid in its node's frame: primitives through `geometry` (so tests can inject
-/// meshes), unique shapes as produced.
-pub(crate) fn solid_mesh(s: &Solid, geometry: &Geometry) -> TriMesh {
-    match s {
-        Solid::Primitive(p) => (geometry.mesh)(p),
-        Solid::Unique(_, u) => u.mesh.clone(),
-    }
-}
-
-/// The volume of a solid: primitives through `geometry`, unique shapes' mesh volume.
-pub(crate) fn solid_volume(s: &Solid, geometry: &Geometry) -> f64 {
-    match s {
-        Solid::Primitive(p) => (geometry.volume)(p),
-        Solid::Unique(_, u) => u.volume,
-    }
-}
-
-/// Materials of the appearances that visible terminals use; equal appearances share one,
-/// named after the smallest of their indices.
-pub(crate) struct Palette {
-    /// Per model appearance: the smallest index of an equal appearance.
-    canonical: Vec<u32>,
-    /// Material slot per canonical appearance (`u32::MAX` until used).
-    slot_of: Vec<u32>,
-    /// For each material slot, the canonical model appearance index.
-    pub used: Vec<u32>,
-}
-
-#[derive(PartialEq, Eq, Hash)]
-struct AppearanceKey<'a>([u64; 15], Option<&'a str>);
-
-impl Palette {
-    pub fn new(model: &Model) -> Palette {
-        let mut first = std::collections::HashMap::with_capacity(model.appearances.len());
-        let canonical = (0..model.appearances.len() as u32)
-            .map(|i| {
-                let a = &model.appearances[i as usize];
-                let [r, g, b] = a.color;
-                let ([dr, dg, db], [sr, sg, sb]) = (a.diffuse, a.specular);
-                let ([er, eg, eb], (t, am, sh)) =
-                    (a.emissive, (a.transparency, a.ambient, a.shine));
-                let values = [r, g, b, t, am, dr, dg, db, sr, sg, sb, er, eg, eb, sh];
-                let key = AppearanceKey(values.map(f64::to_bits), a.texture.as_deref());
-                *first.entry(key).or_insert(i)
-            })
-            .collect();
-        let slot_of = vec![u32::MAX; model.appearances.len()];
-        Palette {
-            canonical,
-            slot_of,
-            used: Vec::new(),
-        }
-    }
-
-    /// Material slot of model appearance `index` (checked by [`check_model`]); slots are
-    /// numbered in order of first use.
-    pub fn slot(&mut self, index: u32) -> u32 {
-        let canonical = self.canonical[index as usize];
-        let slot = &mut self.slot_of[canonical as usize];
-        if *slot == u32::MAX {
-            *slot = self.used.len() as u32;
-            self.used.push(canonical);
-        }
-        *slot
-    }
-}
-
-/// `v` as the 32-bit floats the files store, or an error naming `what` if any is not finite
-/// there. The second line of defence behind production's bounds (`shape::MAX_COORDINATE`):
-/// a model built by hand must not become `null` in a glTF accessor or `inf` in an OBJ.
-pub(crate) fn finite_f32<const N: usize>(
-    v: [f64; N],
-    what: impl FnOnce() -> String,
-) -> Result<[f32; N], ExportError> {
-    let f = v.map(|c| c as f32);
-    if f.iter().all(|c| c.is_finite()) {
-        Ok(f)
-    } else {
-        Err(ExportError::NotFinite {
-            what: what(),
-            value: v.to_vec(),
-        })
-    }
-}
-
-/// Clamps to 0..1, mapping NaN to 0.
-pub(crate) fn unit(v: f64) -> f64 {
-    if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) }
 }

@@ -7,11 +7,10 @@ use std::fmt::Write;
 
 use nalgebra::{Point3, Vector3};
 
+use super::common::{Geometry, Palette, ShapeKey, check_model, finite_f32, solid_mesh, unit};
+use super::error::ExportError;
+use super::options::ExportOptions;
 use super::shading::{ShadedMesh, shade};
-use super::{
-    ExportError, ExportOptions, Geometry, Palette, ShapeKey, check_model, finite_f32, solid_mesh,
-    unit,
-};
 use crate::tree::{Appearance, Model, NodeId, NodeState};
 
 pub(super) fn write_obj(

@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::ExportError;
+use super::error::ExportError;
 use crate::mesh::TriMesh;
 
 /// A mesh ready for drawing: every vertex has a unit normal.

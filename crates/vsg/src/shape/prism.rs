@@ -29,7 +29,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
-use super::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
+use super::common::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use crate::mesh::TriMesh;
 
 /// Relative tolerance for a split meeting the profile corner.

@@ -19,7 +19,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use nalgebra::{Isometry3, Vector3};
 
-use super::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
+use super::common::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use crate::mesh::TriMesh;
 
 /// Slack on angles given as 2π (or π) so rounded user input is accepted.

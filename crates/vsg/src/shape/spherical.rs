@@ -18,8 +18,8 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use nalgebra::{Isometry3, Vector3};
 
+use super::common::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use super::revolved::{ANGLE_EPS, revolve};
-use super::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use crate::mesh::TriMesh;
 
 /// The common parametrisation of the family.

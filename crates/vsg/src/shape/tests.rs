@@ -1,7 +1,7 @@
 //! Invariants every primitive must satisfy: closed oriented meshes whose volume converges to the
 //! analytic one, and splits along every allowed axis that conserve volume and stay inside.
 
-use super::*;
+use super::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use std::f64::consts::{PI, TAU};
 
 /// One representative of each type, with asymmetric parameters so mixed-up axes show.

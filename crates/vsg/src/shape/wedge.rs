@@ -31,7 +31,7 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
-use super::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
+use super::common::{Axis, Piece, Primitive, ShapeError, ShapeType, Tessellation};
 use crate::mesh::TriMesh;
 
 /// Relative tolerance below which k or σ counts as zero, and for kinks at an end.

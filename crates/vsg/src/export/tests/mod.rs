@@ -5,7 +5,9 @@
 use nalgebra::{Isometry3, Vector3};
 
 use super::*;
-use crate::tree::{Appearance, Node, NodeState};
+use crate::mesh::TriMesh;
+use crate::shape::ShapeType;
+use crate::tree::{Appearance, Node, NodeId, NodeState};
 
 mod glb;
 mod obj;
