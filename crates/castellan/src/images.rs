@@ -132,10 +132,8 @@ where
     [P::Subpixel]: image::EncodableLayout,
     C: std::ops::Deref<Target = [P::Subpixel]>,
 {
-    let mut buf = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut buf, image::ImageFormat::Png)
-        .with_context(|| format!("cannot encode {}", path.display()))?;
-    Ok(buf.into_inner())
+    integrate::pipeline::encode_png(img)
+        .map_err(|e| anyhow::anyhow!("cannot encode {}: {e}", path.display()))
 }
 
 #[cfg(test)]

@@ -12,13 +12,10 @@ pub enum IntegrateError {
         message: String,
     },
     #[error(
-        "scale_bar = {metres}: {why} in plan = \"{plan}\"; give scale = METRES_PER_PIXEL instead"
+        "scale_bar = {}: {why} in plan = \"{plan}\"; give scale = METRES_PER_PIXEL instead",
+        why.metres
     )]
-    NoScaleBar {
-        plan: String,
-        metres: f64,
-        why: NoScaleBar,
-    },
+    NoScaleBar { plan: String, why: NoScaleBar },
     #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
     Correspondence {
         index: usize,

@@ -61,17 +61,11 @@ pub struct Integrated {
 pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
     let plan = inputs.plan;
     let mut assumptions = Vec::new();
-    let (frame, scale_note) = ModelScale::decide(plan, inputs.scale).map_err(|e| {
-        let metres = match inputs.scale {
-            GivenScale::ScaleBarMetres(m) => m,
-            _ => f64::NAN,
-        };
-        IntegrateError::NoScaleBar {
+    let (frame, scale_note) =
+        ModelScale::decide(plan, inputs.scale).map_err(|why| IntegrateError::NoScaleBar {
             plan: inputs.plan_image.to_string(),
-            metres,
-            why: e,
-        }
-    })?;
+            why,
+        })?;
     if let ScaleNote::Assumed(why) = &scale_note {
         assumptions.push(why.clone());
     }

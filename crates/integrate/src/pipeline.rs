@@ -188,8 +188,9 @@ pub fn estimate_photo(
     project: &Project,
     index: usize,
     files: &impl Files,
-    seed: u64,
+    options: &Options,
 ) -> Result<(FacadeEstimate, Vec<Overlay>), PipelineError> {
+    let seed = options.seed_for(project);
     let f = &project.facades[index];
     let entry = facade_entry(index, f);
     let (image, lines) =
@@ -299,6 +300,13 @@ pub struct Options {
     pub seed: Option<u64>,
 }
 
+impl Options {
+    /// The seed of a run on `project`: this override, else the project's, else 0.
+    pub fn seed_for(&self, project: &Project) -> u64 {
+        self.seed.or(project.seed).unwrap_or(0)
+    }
+}
+
 /// Everything a reconstruction produced.
 pub struct Reconstruction {
     /// estimate.json.
@@ -343,7 +351,7 @@ pub fn reconstruct(
     options: &Options,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<Reconstruction, PipelineError> {
-    let seed = options.seed.or(project.seed).unwrap_or(0);
+    let seed = options.seed_for(project);
     let mut stages: Vec<(Stage, f64)> = Vec::new();
     let mut overlays = Vec::new();
 
@@ -359,7 +367,7 @@ pub fn reconstruct(
     let photos: Vec<(FacadeEstimate, Vec<Overlay>)> = (0..project.facades.len())
         .into_par_iter()
         .map(|i| {
-            let r = estimate_photo(project, i, files, seed);
+            let r = estimate_photo(project, i, files, options);
             progress(Progress::Step);
             r
         })
@@ -531,11 +539,12 @@ fn export(
     })
 }
 
-/// PNG bytes of an image (the encoding every output of castellan uses).
-pub fn encode_png<P>(image: &image::ImageBuffer<P, Vec<P::Subpixel>>) -> Result<Vec<u8>, String>
+/// PNG bytes of an image (the encoding every output of castellan uses, the binary's too).
+pub fn encode_png<P, C>(image: &image::ImageBuffer<P, C>) -> Result<Vec<u8>, String>
 where
     P: image::PixelWithColorType,
     [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
 {
     let mut bytes = Vec::new();
     image

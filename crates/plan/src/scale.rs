@@ -113,7 +113,10 @@ pub enum ScaleNote {
 /// `scale_bar` was given but no bar was found in the drawing.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("no drawn scale bar found ({LOOKED_FOR})")]
-pub struct NoScaleBar;
+pub struct NoScaleBar {
+    /// The length the user gave the bar, in metres.
+    pub metres: f64,
+}
 
 impl ModelScale {
     /// A model in metres at `metres_per_pixel`.
@@ -137,7 +140,7 @@ impl ModelScale {
         match given {
             GivenScale::MetresPerPixel(s) => Ok((ModelScale::metric(s), ScaleNote::Given)),
             GivenScale::ScaleBarMetres(metres) => {
-                let bar = plan.scale_bar.ok_or(NoScaleBar)?;
+                let bar = plan.scale_bar.ok_or(NoScaleBar { metres })?;
                 let s = bar.metres_per_pixel(metres);
                 Ok((
                     ModelScale::metric(s),
@@ -258,7 +261,7 @@ mod tests {
         let mut p = plan_with_outer_walls(&[]);
         assert_eq!(
             ModelScale::decide(&p, GivenScale::ScaleBarMetres(30.0)),
-            Err(NoScaleBar)
+            Err(NoScaleBar { metres: 30.0 })
         );
         p.scale_bar = Some(ScaleBar {
             x0: 10,

@@ -52,6 +52,11 @@ where
 {
     let bytes =
         png(img, std::path::Path::new(name)).map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+    save(app, name, bytes)
+}
+
+/// Writes one output file of a stage into the project.
+fn save(app: &App, name: &str, bytes: Vec<u8>) -> Result<(), ApiError> {
     app.store
         .commit(None, vec![(name.to_string(), bytes)])
         .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
@@ -83,9 +88,7 @@ fn write_overlay(app: &App, overlay: &pipeline::Overlay) -> Result<String, ApiEr
         .picture
         .png()
         .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?;
-    app.store
-        .commit(None, vec![(name.clone(), bytes)])
-        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+    save(app, &name, bytes)?;
     Ok(name)
 }
 
@@ -168,8 +171,9 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let index = facade_index(&p, &name)?;
         let t = Instant::now();
-        let (e, overlays) = pipeline::estimate_photo(&p, index, &app.store, p.seed.unwrap_or(0))
-            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let (e, overlays) =
+            pipeline::estimate_photo(&p, index, &app.store, &pipeline::Options::default())
+                .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
         let mut written = Vec::new();
         for o in &overlays {
             written.push(write_overlay(app, o)?);
