@@ -114,7 +114,11 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     }
     outputs.commit()?;
     let summary =
-        crate::reconstruction::reconstruct(&project_dir.join("PROJECT.toml"), &args.output, None)?;
+        crate::reconstruction::reconstruct(
+            &project_dir.join("PROJECT.toml"),
+            &args.output,
+            &Default::default(),
+        )?;
     let truth_bytes = files
         .iter()
         .find(|(n, _)| *n == "TRUTH.json")

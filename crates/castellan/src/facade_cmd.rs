@@ -3,7 +3,7 @@
 
 use anyhow::{Result, anyhow};
 use clap::Args;
-use facade::classify::{self, ClassifyParams, FeatureParams, Training};
+use facade::classify::{self, ClassifyParams, FeatureParams, Method, Training};
 use facade::search::{self, SearchParams};
 use image::GrayImage;
 use std::path::PathBuf;
@@ -21,16 +21,18 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;
     let params = ClassifyParams {
+        method: args.classifier,
         features: FeatureParams {
             seed: args.seed,
             ..Default::default()
         },
         ..Default::default()
     };
-    let model = crate::progress::with_spinner("pixel classes (§3.1.2–3.1.4)", |spinner| {
+    let (ll, model) = crate::progress::with_spinner("pixel classes (§3.1.2–3.1.4)", |spinner| {
         let ll = classify::classify(&img, &training, &params)?;
         spinner.set_message("façades, floors and windows (§3.1.5–3.1.7)");
-        search::parse(&img, &ll, &SearchParams::default())
+        let model = search::parse(&img, &ll, &SearchParams::default())?;
+        Ok::<_, facade::FacadeError>((ll, model))
     })
     .map_err(|e| anyhow!("{file}: {e}"))?;
     let labels = model.labels();
@@ -40,6 +42,9 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         let g = GrayImage::from_raw(model.width, model.height, labels.clone())
             .ok_or_else(|| anyhow!("label image size"))?;
         outputs.add(lp, png(&g, lp)?);
+    }
+    if let Some(pp) = &args.probabilities {
+        outputs.add(pp, png(&facade::draw::probability_overlay(&img, &ll), pp)?);
     }
     if let Some(op) = &args.overlay {
         outputs.add(op, png(&facade::draw::label_overlay(&img, &labels), op)?);
@@ -77,7 +82,15 @@ pub struct FacadeArgs {
     /// Draw the façades, floors and windows over the image.
     #[arg(long, value_name = "OVERLAY.png")]
     pub overlay: Option<PathBuf>,
-    /// Seed of the sampling of training and PCA pixels.
+    /// The classifier's class probabilities over the image, before the search (§3.1.4):
+    /// green window, magenta wall, red background, blended where the classifier is unsure.
+    #[arg(long, value_name = "PROBABILITIES.png")]
+    pub probabilities: Option<PathBuf>,
+    /// Per-pixel classifier: forest (filter bank + random forest) or gmm (the dissertation's
+    /// Gaussian mixtures on 18-D features, §3.1.3–3.1.4).
+    #[arg(long, default_value = "forest", value_parser = crate::flags::classifier)]
+    pub classifier: Method,
+    /// Seed of the sampling of training pixels (and PCA pixels and EM for gmm, trees for forest).
     #[arg(long, default_value_t = 7)]
     pub seed: u64,
 }

@@ -88,7 +88,10 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
             img,
             &training,
             &params,
-            &ClassifyParams::default(),
+            &ClassifyParams {
+                method: args.classifier,
+                ..Default::default()
+            },
             &ClassMapParams::default(),
         )?);
     }
@@ -189,6 +192,10 @@ pub struct GothicArgs {
     /// so glazing bars, frames and shutters inside windows no longer hold the contours.
     #[arg(long, value_name = "TRAINING.json")]
     pub training: Option<PathBuf>,
+    /// With --training: the per-pixel classifier, forest (filter bank + random forest) or gmm
+    /// (the Gaussian mixtures of §3.1.3–3.1.4).
+    #[arg(long, default_value = "forest", value_parser = crate::flags::classifier, requires = "training")]
+    pub classifier: facade::classify::Method,
 }
 
 #[cfg(test)]

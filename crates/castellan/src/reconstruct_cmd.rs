@@ -19,10 +19,18 @@ pub struct ReconstructArgs {
     /// Seed for the classifier's sampling and the program's randomness (overrides the project's).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Per-pixel classifier of the façade photos: forest (filter bank + random forest) or gmm
+    /// (the dissertation's Gaussian mixtures, §3.1.3–3.1.4).
+    #[arg(long, default_value = "forest", value_parser = crate::flags::classifier)]
+    pub classifier: facade::classify::Method,
 }
 
 pub fn run(args: &ReconstructArgs) -> Result<()> {
-    let s = crate::reconstruction::reconstruct(&args.project, &args.output, args.seed)?;
+    let options = integrate::pipeline::Options {
+        seed: args.seed,
+        classifier: args.classifier,
+    };
+    let s = crate::reconstruction::reconstruct(&args.project, &args.output, &options)?;
     crate::reconstruction::print_summary(&s);
     Ok(())
 }
@@ -44,5 +52,17 @@ mod tests {
         let c = Cli::try_parse_from(["x", "p.toml", "-o", "out", "--seed", "3"]).unwrap();
         assert_eq!(c.args.output, PathBuf::from("out"));
         assert_eq!(c.args.seed, Some(3));
+        assert_eq!(c.args.classifier, facade::classify::Method::Forest);
+    }
+
+    #[test]
+    fn the_classifier_is_forest_or_gmm() {
+        let c = Cli::try_parse_from(["x", "p.toml", "-o", "o", "--classifier", "gmm"]).unwrap();
+        assert_eq!(c.args.classifier, facade::classify::Method::Gmm);
+        let e = Cli::try_parse_from(["x", "p.toml", "-o", "o", "--classifier", "svm"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("'svm' is not a classifier"), "{e}");
     }
 }

@@ -63,7 +63,11 @@ impl Files for FolderFiles {
 }
 
 /// Reads PROJECT.toml, runs the pipeline (`integrate::pipeline`) and writes OUTDIR whole.
-pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Result<Summary> {
+pub fn reconstruct(
+    project_path: &Path,
+    outdir: &Path,
+    options: &pipeline::Options,
+) -> Result<Summary> {
     let name = project_path.display().to_string();
     let text = crate::text::read_text(project_path)?;
     let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
@@ -74,7 +78,7 @@ pub fn reconstruct(project_path: &Path, outdir: &Path, seed: Option<u64>) -> Res
     let r = pipeline::reconstruct(
         &project,
         &files,
-        &pipeline::Options { seed },
+        options,
         &|p| match p {
             Progress::Started(stage) => bar.set_message(stage.describe()),
             Progress::Step => bar.inc(1),

@@ -1,17 +1,52 @@
 //! Figures for §3.1: the façade image tinted by its pixel labels (0 background, 1 wall,
-//! 2 window; §3.1.2–3.1.7): background red, wall magenta, window green, each averaged half and
-//! half with the photo's own colour so the façade stays visible under the tint.
+//! 2 window; §3.1.2–3.1.7) or by the classifier's class probabilities (§3.1.4): background red,
+//! wall magenta, window green, each averaged half and half with the photo's own colour so the
+//! façade stays visible under the tint.
 
 use image::{Rgb, RgbImage};
+
+use crate::classify::{Class, LogLikelihoods};
+
+/// Tint colours by class (the discriminant indexes it).
+const COLOURS: [[u8; 3]; 3] = [[255, 40, 40], [255, 0, 255], [0, 220, 0]];
+
+/// The words a caption uses for the tints.
+pub const LEGEND: &str = "green window, magenta wall, red background";
 
 /// The image tinted by label: background red, wall magenta, window green.
 pub fn label_overlay(img: &RgbImage, labels: &[u8]) -> RgbImage {
     let mut o = img.clone();
-    let colours = [Rgb([255u8, 40, 40]), Rgb([255, 0, 255]), Rgb([0, 220, 0])];
     for (p, l) in o.pixels_mut().zip(labels) {
-        let c = colours[usize::from(*l).min(2)];
+        let c = COLOURS[usize::from(*l).min(2)];
         for k in 0..3 {
             p[k] = ((u16::from(p[k]) + u16::from(c[k])) / 2) as u8;
+        }
+    }
+    o
+}
+
+/// The image tinted by the per-pixel class probabilities (the softmax of the log-likelihoods
+/// over the trained classes): each pixel's tint is the probability-weighted mix of the class
+/// colours, so a sure pixel shows its class's colour and a doubtful one a blend, as in
+/// ilastik's live view. `img` and `ll` must have the same size (pixels past `ll` are left).
+pub fn probability_overlay(img: &RgbImage, ll: &LogLikelihoods) -> RgbImage {
+    let mut o = img.clone();
+    let maps: Vec<(usize, &[f32])> = Class::ALL
+        .iter()
+        .filter_map(|&c| ll.get(c).map(|m| (c as usize, m)))
+        .collect();
+    for (i, p) in o.pixels_mut().enumerate().take(ll.width * ll.height) {
+        let top = maps.iter().map(|(_, m)| m[i]).fold(f32::NEG_INFINITY, f32::max);
+        let weights: Vec<f32> = maps.iter().map(|(_, m)| (m[i] - top).exp()).collect();
+        let total: f32 = weights.iter().sum();
+        for k in 0..3 {
+            let tint: f32 = maps
+                .iter()
+                .zip(&weights)
+                .map(|((c, _), w)| w * f32::from(COLOURS[*c][k]))
+                .sum::<f32>()
+                / total;
+            p[k] = ((f32::from(p[k]) + tint) / 2.0).round() as u8;
         }
     }
     o
@@ -30,5 +65,21 @@ mod tests {
         assert_eq!(o.get_pixel(2, 0), &Rgb([50, 160, 50]));
         // Labels past 2 draw as windows.
         assert_eq!(o.get_pixel(3, 0), &Rgb([50, 160, 50]));
+    }
+
+    #[test]
+    fn probabilities_mix_the_class_colours() {
+        let img = RgbImage::from_pixel(2, 1, Rgb([100, 100, 100]));
+        let half = 0.5f32.ln();
+        let ll = LogLikelihoods {
+            width: 2,
+            height: 1,
+            // Pixel 0: sure window; pixel 1: wall or window, even odds. No background map.
+            maps: [None, Some(vec![-30.0, half]), Some(vec![0.0, half])],
+        };
+        let o = probability_overlay(&img, &ll);
+        assert_eq!(o.get_pixel(0, 0), &Rgb([50, 160, 50]));
+        // Tint (127.5, 110, 127.5) averaged with the grey.
+        assert_eq!(o.get_pixel(1, 0), &Rgb([114, 105, 114]));
     }
 }

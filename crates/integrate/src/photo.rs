@@ -3,7 +3,7 @@
 //! search (§3.1.5–3.1.7). Boxes and points are given in the photo's pixels and mapped through
 //! the rectifying homography, so a project stays valid if rectification is re-run.
 
-use facade::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training, classify};
 use facade::model::FacadeModel;
 use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
 use facade::search::{SearchParams, parse};
@@ -28,6 +28,8 @@ pub struct FacadePhoto<'a> {
     /// Metres per pixel when the photo is a measured elevation (rectified photos only).
     pub metres_per_pixel: Option<f64>,
     pub seed: u64,
+    /// The per-pixel classifier of §3.1.3–3.1.4 (the text's GMM or the forest).
+    pub classifier: Method,
 }
 
 /// The chapter 3 estimate of one photo.
@@ -119,7 +121,10 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
             (shift * homography, cut)
         }
     };
-    let mut params = ClassifyParams::default();
+    let mut params = ClassifyParams {
+        method: photo.classifier,
+        ..Default::default()
+    };
     params.features.seed = photo.seed;
     let log_likelihoods = classify(&rectified, &training, &params)
         .map_err(|e| err("pixel classes (§3.1.2–3.1.4)", e))?;

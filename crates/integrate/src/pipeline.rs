@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use facade::classify::Training;
+use facade::classify::{Method, Training};
 use facade::rectify::ManualLines;
 use image::{DynamicImage, GrayImage, RgbImage};
 use plan::ParsedPlan;
@@ -205,22 +205,38 @@ pub fn estimate_photo(
         bbox: f.bbox,
         metres_per_pixel: f.metres_per_pixel,
         seed,
+        classifier: options.classifier,
     })
     .map_err(|e| at(entry)(e.to_string()))?;
     let overlays = facade_overlays(&estimate, &image);
     Ok((estimate, overlays))
 }
 
-/// §3.1.1's line families, the façade tree over the rectified photo, and its label image.
+/// §3.1.1's line families, the classifier's probabilities and the façade tree over the
+/// rectified photo, and its label image.
 fn facade_overlays(e: &FacadeEstimate, photo: &RgbImage) -> Vec<Overlay> {
     let stem = safe_stem(&e.name);
     let labels = e.model.labels();
     let mut out = lines_overlay(&e.name, &stem, photo, e.rectification.as_ref());
     out.push(Overlay {
+        name: format!("overlays/{stem}_pixels.png"),
+        caption: Some(format!(
+            "{}: the pixel classifier's class probabilities before the façade search (§3.1.4; \
+             {}, blended where unsure)",
+            e.name,
+            facade::draw::LEGEND
+        )),
+        picture: Picture::Rgb(facade::draw::probability_overlay(
+            &e.rectified,
+            &e.log_likelihoods,
+        )),
+    });
+    out.push(Overlay {
         name: format!("overlays/{stem}_facade.png"),
         caption: Some(format!(
-            "{}: rectified façade, wall/window/background (§3.1.7)",
-            e.name
+            "{}: the façade tree over the rectified photo (§3.1.7; {})",
+            e.name,
+            facade::draw::LEGEND
         )),
         picture: Picture::Rgb(facade::draw::label_overlay(&e.rectified, &labels)),
     });
@@ -298,6 +314,8 @@ fn lines_overlay(
 pub struct Options {
     /// Overrides the project's seed (the classifier's sampling, the program's randomness).
     pub seed: Option<u64>,
+    /// The per-pixel classifier of the façade and Gothic photos (§3.1.3–3.1.4).
+    pub classifier: Method,
 }
 
 impl Options {

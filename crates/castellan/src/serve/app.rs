@@ -24,6 +24,8 @@ pub struct App {
     pub max_upload: usize,
     /// The token and the addresses the server answers to (access.rs, checked by guard.rs).
     pub access: Access,
+    /// The seed and classifier of every stage run (`castellan serve --classifier`).
+    pub options: integrate::pipeline::Options,
     progress: Mutex<Progress>,
     /// How long each step took last time, so the page can show how far along a step is.
     durations: Mutex<HashMap<String, u128>>,
@@ -44,11 +46,20 @@ struct Progress {
 }
 
 impl App {
-    pub fn new(store: Store, max_upload: usize, access: Access) -> Arc<App> {
+    pub fn new(
+        store: Store,
+        max_upload: usize,
+        access: Access,
+        classifier: facade::classify::Method,
+    ) -> Arc<App> {
         Arc::new(App {
             store,
             max_upload,
             access,
+            options: integrate::pipeline::Options {
+                seed: None,
+                classifier,
+            },
             progress: Mutex::new(Progress::default()),
             durations: Mutex::new(HashMap::new()),
         })

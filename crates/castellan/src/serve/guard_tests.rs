@@ -498,6 +498,7 @@ async fn a_body_that_never_arrives_is_cut_off() {
         super::store::Store::open(dir.path()).unwrap(),
         1 << 20,
         access,
+        Default::default(),
     ));
     let req = Request::put("/api/correspondences")
         .header("content-type", "application/json")

@@ -15,6 +15,7 @@ mod guard;
 #[cfg(test)]
 mod guard_tests;
 mod lines;
+mod preview;
 mod project;
 mod stages;
 mod store;
@@ -66,6 +67,10 @@ pub struct ServeArgs {
     /// Most connections served at once.
     #[arg(long, default_value_t = 64, hide = true, value_parser = clap::value_parser!(u64).range(1..=10_000))]
     pub max_connections: u64,
+    /// Per-pixel classifier of the façade photos (the façade stage, the live probability map
+    /// and the model): forest or gmm (§3.1.3–3.1.4's mixtures).
+    #[arg(long, default_value = "forest", value_parser = crate::flags::classifier)]
+    pub classifier: facade::classify::Method,
 }
 
 const INDEX_HTML: &str = include_str!("../../web/index.html");
@@ -93,6 +98,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
             store,
             (args.max_upload_mb as usize) << 20,
             access,
+            args.classifier,
         ));
         if !args.host.is_loopback() {
             eprintln!(
@@ -139,6 +145,7 @@ pub fn router(app: Arc<app::App>) -> Router {
             put(lines::save).delete(lines::remove),
         )
         .route("/api/facades/{name}/facade", post(stages::facade_stage))
+        .route("/api/facades/{name}/preview", post(preview::preview))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(project::file))

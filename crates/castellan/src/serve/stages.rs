@@ -172,7 +172,7 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         let index = facade_index(&p, &name)?;
         let t = Instant::now();
         let (e, overlays) =
-            pipeline::estimate_photo(&p, index, &app.store, &pipeline::Options::default())
+            pipeline::estimate_photo(&p, index, &app.store, &app.options)
                 .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
         let mut written = Vec::new();
         for o in &overlays {
@@ -225,7 +225,7 @@ pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
         let s = crate::reconstruction::reconstruct(
             &app.store.dir.join(PROJECT_FILE),
             &app.store.dir.join("out"),
-            None,
+            &app.options,
         )
         .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
         let stages: serde_json::Map<String, Value> = s

@@ -40,6 +40,7 @@ pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
         store::Store::open(dir).unwrap(),
         max_upload,
         access,
+        Default::default(),
     ))
 }
 
@@ -372,4 +373,79 @@ async fn reconstruct_names_a_facade_still_without_correspondence() {
         "{e}"
     );
     assert!(!dir.path().join("out/model.glb").exists());
+}
+
+/// Every file of the project folder with its bytes, to see that a request wrote nothing.
+fn folder(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<_> = walk(dir)
+        .into_iter()
+        .map(|p| (p.display().to_string(), std::fs::read(&p).unwrap()))
+        .collect();
+    v.sort();
+    v
+}
+
+fn walk(dir: &Path) -> Vec<std::path::PathBuf> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flat_map(|e| {
+            let p = e.unwrap().path();
+            if p.is_dir() { walk(&p) } else { vec![p] }
+        })
+        .collect()
+}
+
+#[tokio::test]
+async fn the_live_probability_map_follows_the_boxes_and_writes_nothing() {
+    let dir = demo_project();
+    let app = app(dir.path(), 1 << 20);
+    let before = folder(dir.path());
+    let uri = "/api/facades/keep_south_near.png/preview";
+    let photo = image::open(dir.path().join("keep_south_near.png")).unwrap();
+    // Boxes on the demo photo's wall (top left) and on a window, as the demo's own training has.
+    let t: Value = serde_json::from_slice(
+        &std::fs::read(dir.path().join("keep_south_near.training.json")).unwrap(),
+    )
+    .unwrap();
+    let req = Request::post(uri)
+        .header("content-type", "application/json")
+        .body(Body::from(t.to_string()))
+        .unwrap();
+    let res = app.clone().oneshot(with_token(req)).await.unwrap();
+    assert_eq!(res.status(), StatusCode::OK);
+    assert_eq!(res.headers()["content-type"], "image/png");
+    assert!(res.headers()["x-castellan-ms"].to_str().unwrap().parse::<u64>().is_ok());
+    let body = res.into_body().collect().await.unwrap().to_bytes();
+    let map = image::load_from_memory(&body).unwrap();
+    assert_eq!(map.width(), photo.width());
+    assert_eq!(map.height(), photo.height());
+    assert_ne!(map.to_rgb8(), photo.to_rgb8(), "the map tints the photo");
+
+    // One class only, a box outside the photo, an inverted box: 422 naming the class or box.
+    for (body, words) in [
+        (r#"{"classes":{"window":[[10,10,20,20]]}}"#, "no wall boxes"),
+        (
+            r#"{"classes":{"window":[[10,10,20,20]],"wall":[[30,30,60,60],[9000,9000,9100,9100]]}}"#,
+            "wall box 1",
+        ),
+        (
+            r#"{"classes":{"window":[[20,10,10,20]],"wall":[[30,30,60,60]]}}"#,
+            "window box 0",
+        ),
+    ] {
+        let (s, e) = json(&app, "POST", uri, body).await;
+        assert_eq!(s, StatusCode::UNPROCESSABLE_ENTITY, "{e}");
+        let m = e["error"].as_str().unwrap();
+        assert!(m.contains(words) && m.contains("keep_south_near.png"), "{m}");
+    }
+    let (s, _) = json(&app, "POST", "/api/facades/nope.png/preview", "{\"classes\":{}}").await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+    assert_eq!(folder(dir.path()), before, "a preview writes nothing");
+}
+
+fn with_token(mut req: Request<Body>) -> Request<Body> {
+    let h = req.headers_mut();
+    h.insert("host", HOST.parse().unwrap());
+    h.insert(super::access::TOKEN_HEADER, TOKEN.parse().unwrap());
+    req
 }

@@ -136,6 +136,11 @@ try {
   await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.4, { steps: 4 });
   await page.mouse.up();
   check(Number(await page.getAttribute('#boxes-info', 'data-count')) === before + 1, 'a drawn box was added');
+  // Issue 21: the classifier's probability map of the boxes drawn so far follows each new box.
+  await page.waitForFunction((n) => document.getElementById('preview-info').textContent
+    .includes(`from ${n} boxes`), before + 1);
+  await page.waitForSelector('#preview-overlay[data-loaded=true]');
+  figures.preview_info = await page.textContent('#preview-info');
   await page.click('#boxes-undo');
   check(Number(await page.getAttribute('#boxes-info', 'data-count')) === before, 'undo removed it');
   await page.click('#boxes-save');

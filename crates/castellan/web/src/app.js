@@ -263,6 +263,45 @@ function showBoxCount(note) {
   $('boxes-info').textContent = `${n} boxes (${note})`;
 }
 
+// Issue 21: after each box, the pixel classifier's class probabilities over the photo for the
+// boxes drawn so far (saved or not), as ilastik shows them live. A newer request supersedes an
+// older one still running.
+let previewRequest = 0;
+async function showPreview() {
+  const name = state.facade;
+  const info = $('preview-info');
+  const img = $('preview-overlay');
+  const classes = boxes();
+  info.className = '';
+  if (!(classes.window || []).length || !(classes.wall || []).length) {
+    img.removeAttribute('src');
+    img.dataset.loaded = 'false';
+    info.textContent = 'Draw a window box and a wall box to see what the classifier learns';
+    return;
+  }
+  const request = ++previewRequest;
+  info.textContent = 'Classifying…';
+  const res = await fetch(`/api/facades/${encodeURIComponent(name)}/preview`, {
+    method: 'POST',
+    headers: { 'x-castellan-token': TOKEN, 'content-type': 'application/json' },
+    body: JSON.stringify(state.training[name]),
+  }).catch((e) => ({ ok: false, statusText: e.message, json: async () => ({}) }));
+  if (request !== previewRequest || name !== state.facade) return;
+  if (!res.ok) {
+    const data = await res.json().catch(() => ({}));
+    info.textContent = data.error || res.statusText;
+    info.className = 'error';
+    return;
+  }
+  const url = URL.createObjectURL(await res.blob());
+  if (img.src.startsWith('blob:')) URL.revokeObjectURL(img.src);
+  img.onload = () => { img.dataset.loaded = 'true'; };
+  img.src = url;
+  const n = Object.values(classes).reduce((a, l) => a + l.length, 0);
+  info.textContent = `Class probabilities from ${n} boxes (green window, magenta wall, red ` +
+    `background; blended where unsure), ${res.headers.get('x-castellan-ms')} ms`;
+}
+
 function drawBoxes(ctx) {
   for (const [cls, list] of Object.entries(boxes())) {
     ctx.strokeStyle = COLOURS[cls] || '#000';
@@ -286,6 +325,7 @@ async function selectFacade(name) {
   state.photos[name] = img;
   redrawPhoto = canvasImage($('facade-canvas'), img, drawBoxes);
   showBoxCount('saved');
+  showPreview();
   // The façade's saved segments, if any; otherwise the detected ones appear after Rectify.
   const entry = ((state.project && state.project.facade) || []).find((f) => f.image === name);
   state.lines = { horizontal: [], vertical: [] };
@@ -327,7 +367,10 @@ window.addEventListener('mouseup', () => {
   if (d.to) {
     const [x0, x1] = [d.from[0], d.to[0]].sort((a, b) => a - b);
     const [y0, y1] = [d.from[1], d.to[1]].sort((a, b) => a - b);
-    if (x1 - x0 >= 2 && y1 - y0 >= 2) (boxes()[d.cls] ||= []).push([x0, y0, x1, y1].map(Math.round));
+    if (x1 - x0 >= 2 && y1 - y0 >= 2) {
+      (boxes()[d.cls] ||= []).push([x0, y0, x1, y1].map(Math.round));
+      showPreview();
+    }
   }
   redrawPhoto();
   showBoxCount('unsaved');
@@ -338,6 +381,7 @@ $('boxes-undo').addEventListener('click', () => {
   (boxes()[cls] || []).pop();
   redrawPhoto();
   showBoxCount('unsaved');
+  showPreview();
 });
 
 $('boxes-save').addEventListener('click', async () => {

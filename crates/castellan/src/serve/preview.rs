@@ -1,0 +1,61 @@
+//! POST /api/facades/{name}/preview (issue 21): the pixel classifier's class probabilities for
+//! the boxes the user has drawn so far, over the photo, as ilastik shows them live — so the user
+//! sees after each box what the classifier has learned, before saving or running the search.
+//! Nothing is written; the boxes are the request's, not the project's.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use axum::extract::{Path, State};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use facade::classify::{ClassifyParams, Training, classify};
+
+use super::app::{ApiError, App, blocking, err, find_facade};
+use crate::images::read_image;
+
+/// The PNG of the photo tinted by class probability (`facade::draw::probability_overlay`);
+/// header `x-castellan-ms` says how long the classifier took. 422 names the bad box or the
+/// missing class.
+pub async fn preview(
+    State(app): State<Arc<App>>,
+    Path(name): Path<String>,
+    Json(training): Json<Training>,
+) -> Result<Response, ApiError> {
+    let (png, ms) = blocking(app, "preview", move |app| {
+        let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
+        let f = find_facade(&p, &name)?;
+        let path = app.store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
+        let photo = read_image(&path)
+            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
+            .to_rgb8();
+        let t = Instant::now();
+        let mut params = ClassifyParams {
+            method: app.options.classifier,
+            ..Default::default()
+        };
+        params.features.seed = app.options.seed_for(&p);
+        let unprocessable = |e: facade::FacadeError| {
+            ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{name}: {e}"))
+        };
+        let ll = classify(&photo, &training, &params).map_err(unprocessable)?;
+        let ms = t.elapsed().as_millis();
+        let png = crate::images::png(
+            &facade::draw::probability_overlay(&photo, &ll),
+            std::path::Path::new("preview.png"),
+        )
+        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+        Ok((png, ms))
+    })
+    .await?;
+    Ok((
+        [
+            (header::CONTENT_TYPE, "image/png".to_string()),
+            (header::CACHE_CONTROL, "no-store".to_string()),
+            (header::HeaderName::from_static("x-castellan-ms"), ms.to_string()),
+        ],
+        png,
+    )
+        .into_response())
+}
