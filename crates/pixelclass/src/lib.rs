@@ -8,7 +8,7 @@
 //! - [`filters`]: the separable Gaussian and the central differences under the bank.
 //! - [`features`]: [`FilterBank`] (scales σ × [`Family`]: smoothing, gradient magnitude, LoG,
 //!   DoG, structure-tensor and Hessian eigenvalues) and [`features::compute`] → [`Features`].
-//! - [`forest`]: [`Forest`] (Gini trees on binned features, class-balanced, seeded per tree)
+//! - [`forest`]: the [`Forest`] (Gini trees on binned features, class-balanced, seeded per tree)
 //!   and its [`Probabilities`].
 //! - [`resample`]: the working resolution (area shrink before, bilinear enlarge after).
 //! - [`classify`] runs it all: channels + labelled [`Sample`]s → probabilities.
@@ -68,7 +68,9 @@ pub struct Params {
     pub forest: ForestParams,
     /// The filters and the forest run on the image shrunk (area averaging) to at most this
     /// many pixels, and the maps are enlarged back bilinearly; `usize::MAX` keeps the input
-    /// resolution. The bank's σ are in pixels of the shrunk image.
+    /// resolution. The bank's σ are in pixels of the shrunk image. The default, 150 000 (about
+    /// 450 x 330), was measured on the façade sets: no less accurate than the full image, and
+    /// the features and the prediction cost a fraction.
     pub max_pixels: usize,
 }
 
@@ -77,7 +79,7 @@ impl Default for Params {
         Params {
             bank: FilterBank::default(),
             forest: ForestParams::default(),
-            max_pixels: 300_000,
+            max_pixels: 150_000,
         }
     }
 }
