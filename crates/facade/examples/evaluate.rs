@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use facade::classify::{Class, ClassifyParams, classify};
+use facade::classify::{Class, ClassifyParams, Method, classify};
 use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside};
 use facade::search::{SearchParams, parse};
 
@@ -38,7 +38,7 @@ fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
 
 /// Overrides for experiments: FACADE_BOX (box side, default 9), FACADE_MARGIN (clearance of the
 /// boxes from their class's border, default 0), FACADE_RIDGE_REL, FACADE_PCS
-/// (principal components per channel).
+/// (principal components per channel), FACADE_CLASSIFIER (gmm or forest, default forest).
 fn box_side() -> usize {
     env_usize("FACADE_BOX", 9)
 }
@@ -52,6 +52,9 @@ fn env_usize(name: &str, default: usize) -> usize {
 
 fn classify_params() -> ClassifyParams {
     let mut p = ClassifyParams::default();
+    if std::env::var("FACADE_CLASSIFIER").as_deref() == Ok("gmm") {
+        p.method = Method::Gmm;
+    }
     if let Some(r) = std::env::var("FACADE_RIDGE_REL")
         .ok()
         .and_then(|v| v.parse().ok())
