@@ -113,12 +113,11 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         outputs.add(&project_dir.join(name), bytes.to_vec());
     }
     outputs.commit()?;
-    let summary =
-        crate::reconstruction::reconstruct(
-            &project_dir.join("PROJECT.toml"),
-            &args.output,
-            &Default::default(),
-        )?;
+    let summary = crate::reconstruction::reconstruct(
+        &project_dir.join("PROJECT.toml"),
+        &args.output,
+        &Default::default(),
+    )?;
     let truth_bytes = files
         .iter()
         .find(|(n, _)| *n == "TRUTH.json")

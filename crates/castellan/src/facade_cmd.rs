@@ -101,6 +101,7 @@ mod flag_tests {
 
     use super::FacadeArgs;
     use crate::flags::testing::parse;
+    use facade::classify::Method;
 
     fn facade_args(extra: &[&str]) -> Result<FacadeArgs, clap::Error> {
         let mut argv = vec![
@@ -134,12 +135,26 @@ mod flag_tests {
         assert_eq!(a.overlay, Some(PathBuf::from("o.png")));
         assert_eq!(a.seed, 9);
     }
+
+    #[test]
+    fn facade_probabilities_and_classifier_flags() {
+        let a = facade_args(&[]).unwrap();
+        assert_eq!((a.classifier, a.probabilities), (Method::Forest, None));
+        let a = facade_args(&["--classifier", "gmm", "--probabilities", "p.png"]).unwrap();
+        assert_eq!(a.classifier, Method::Gmm);
+        assert_eq!(a.probabilities, Some(PathBuf::from("p.png")));
+        let e = facade_args(&["--classifier", "GMMs"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("'GMMs' is not a classifier"), "{e}");
+    }
 }
 
 /// Issue 4's bad inputs through the whole command: a clear error naming the file, nothing written.
 #[cfg(test)]
 mod bad_input_tests {
-    use super::{FacadeArgs, run};
+    use super::{FacadeArgs, Method, run};
     use image::{Rgb, RgbImage};
 
     /// Runs the command on `img` with TRAINING.json text `training`; returns the error text and
@@ -156,12 +171,16 @@ mod bad_input_tests {
             output: output.clone(),
             labels: Some(dir.path().join("l.png")),
             overlay: None,
+            probabilities: Some(dir.path().join("p.png")),
+            classifier: Method::Forest,
             seed: 7,
         };
         let err = run(&args).expect_err("bad input must fail");
         (
             format!("{err:#}"),
-            output.exists() || dir.path().join("l.png").exists(),
+            output.exists()
+                || dir.path().join("l.png").exists()
+                || dir.path().join("p.png").exists(),
         )
     }
 

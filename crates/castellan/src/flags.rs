@@ -74,8 +74,11 @@ fn within(s: &str, range: &RangeInclusive<f64>, unit: &str) -> Result<f64, Strin
 /// The per-pixel classifier of the façade stages (§3.1.3–3.1.4): `forest` (the default, a
 /// filter bank and random forest, issue 21) or `gmm` (the text's Gaussian mixtures).
 pub fn classifier(s: &str) -> Result<facade::classify::Method, String> {
-    serde_json::from_value(serde_json::Value::String(s.trim().to_string()))
-        .map_err(|_| format!("'{s}' is not a classifier: use forest (the default) or gmm (§3.1.3–3.1.4's mixtures)"))
+    serde_json::from_value(serde_json::Value::String(s.trim().to_string())).map_err(|_| {
+        format!(
+            "'{s}' is not a classifier: use forest (the default) or gmm (§3.1.3–3.1.4's mixtures)"
+        )
+    })
 }
 
 /// An odd window side from 3 to 101 pixels (§2.1.1's W × W neighbourhood).

@@ -230,6 +230,10 @@ mod flag_tests {
         let a = gothic_args(&["--training", "t.json"]).unwrap();
         assert_eq!(a.training, Some(PathBuf::from("t.json")));
         assert!(gothic_args(&["--training"]).is_err());
+        let a = gothic_args(&["--training", "t.json", "--classifier", "gmm"]).unwrap();
+        assert_eq!(a.classifier, facade::classify::Method::Gmm);
+        // The classifier only means something with boxes to learn from.
+        assert!(gothic_args(&["--classifier", "gmm"]).is_err());
     }
 
     #[test]
@@ -299,6 +303,7 @@ mod training_tests {
             min_radius: 8.0,
             hatching: false,
             training: Some(tfile),
+            classifier: facade::classify::Method::Forest,
         };
         let r = run(&args);
         (r, std::fs::read_to_string(&output).ok())

@@ -75,15 +75,10 @@ pub fn reconstruct(
         dir: project_path.parent().unwrap_or(Path::new("")).to_path_buf(),
     };
     let bar = crate::progress::bar(pipeline::steps(&project));
-    let r = pipeline::reconstruct(
-        &project,
-        &files,
-        options,
-        &|p| match p {
-            Progress::Started(stage) => bar.set_message(stage.describe()),
-            Progress::Step => bar.inc(1),
-        },
-    )
+    let r = pipeline::reconstruct(&project, &files, options, &|p| match p {
+        Progress::Started(stage) => bar.set_message(stage.describe()),
+        Progress::Step => bar.inc(1),
+    })
     .map_err(|e| anyhow!("{name}: {e}"))?;
     bar.finish_and_clear();
     if let ScaleNote::Bar(how) = &r.scale_note {

@@ -3,7 +3,7 @@
 //! wall magenta, window green, each averaged half and half with the photo's own colour so the
 //! façade stays visible under the tint.
 
-use image::{Rgb, RgbImage};
+use image::RgbImage;
 
 use crate::classify::{Class, LogLikelihoods};
 
@@ -36,7 +36,10 @@ pub fn probability_overlay(img: &RgbImage, ll: &LogLikelihoods) -> RgbImage {
         .filter_map(|&c| ll.get(c).map(|m| (c as usize, m)))
         .collect();
     for (i, p) in o.pixels_mut().enumerate().take(ll.width * ll.height) {
-        let top = maps.iter().map(|(_, m)| m[i]).fold(f32::NEG_INFINITY, f32::max);
+        let top = maps
+            .iter()
+            .map(|(_, m)| m[i])
+            .fold(f32::NEG_INFINITY, f32::max);
         let weights: Vec<f32> = maps.iter().map(|(_, m)| (m[i] - top).exp()).collect();
         let total: f32 = weights.iter().sum();
         for k in 0..3 {
@@ -55,6 +58,7 @@ pub fn probability_overlay(img: &RgbImage, ll: &LogLikelihoods) -> RgbImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use image::Rgb;
 
     #[test]
     fn labels_tint_half_and_half() {

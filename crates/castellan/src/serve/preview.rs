@@ -6,10 +6,10 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use axum::Json;
 use facade::classify::{ClassifyParams, Training, classify};
 
 use super::app::{ApiError, App, blocking, err, find_facade};
@@ -26,7 +26,10 @@ pub async fn preview(
     let (png, ms) = blocking(app, "preview", move |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let f = find_facade(&p, &name)?;
-        let path = app.store.path(&f.image).map_err(err(StatusCode::CONFLICT))?;
+        let path = app
+            .store
+            .path(&f.image)
+            .map_err(err(StatusCode::CONFLICT))?;
         let photo = read_image(&path)
             .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
             .to_rgb8();
@@ -53,7 +56,10 @@ pub async fn preview(
         [
             (header::CONTENT_TYPE, "image/png".to_string()),
             (header::CACHE_CONTROL, "no-store".to_string()),
-            (header::HeaderName::from_static("x-castellan-ms"), ms.to_string()),
+            (
+                header::HeaderName::from_static("x-castellan-ms"),
+                ms.to_string(),
+            ),
         ],
         png,
     )

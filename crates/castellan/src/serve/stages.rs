@@ -171,9 +171,8 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let index = facade_index(&p, &name)?;
         let t = Instant::now();
-        let (e, overlays) =
-            pipeline::estimate_photo(&p, index, &app.store, &app.options)
-                .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let (e, overlays) = pipeline::estimate_photo(&p, index, &app.store, &app.options)
+            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
         let mut written = Vec::new();
         for o in &overlays {
             written.push(write_overlay(app, o)?);

@@ -414,7 +414,13 @@ async fn the_live_probability_map_follows_the_boxes_and_writes_nothing() {
     let res = app.clone().oneshot(with_token(req)).await.unwrap();
     assert_eq!(res.status(), StatusCode::OK);
     assert_eq!(res.headers()["content-type"], "image/png");
-    assert!(res.headers()["x-castellan-ms"].to_str().unwrap().parse::<u64>().is_ok());
+    assert!(
+        res.headers()["x-castellan-ms"]
+            .to_str()
+            .unwrap()
+            .parse::<u64>()
+            .is_ok()
+    );
     let body = res.into_body().collect().await.unwrap().to_bytes();
     let map = image::load_from_memory(&body).unwrap();
     assert_eq!(map.width(), photo.width());
@@ -436,9 +442,18 @@ async fn the_live_probability_map_follows_the_boxes_and_writes_nothing() {
         let (s, e) = json(&app, "POST", uri, body).await;
         assert_eq!(s, StatusCode::UNPROCESSABLE_ENTITY, "{e}");
         let m = e["error"].as_str().unwrap();
-        assert!(m.contains(words) && m.contains("keep_south_near.png"), "{m}");
+        assert!(
+            m.contains(words) && m.contains("keep_south_near.png"),
+            "{m}"
+        );
     }
-    let (s, _) = json(&app, "POST", "/api/facades/nope.png/preview", "{\"classes\":{}}").await;
+    let (s, _) = json(
+        &app,
+        "POST",
+        "/api/facades/nope.png/preview",
+        "{\"classes\":{}}",
+    )
+    .await;
     assert_eq!(s, StatusCode::NOT_FOUND);
     assert_eq!(folder(dir.path()), before, "a preview writes nothing");
 }
