@@ -1,6 +1,7 @@
 //! Speed of `castellan serve`'s overlays on a 1-megapixel photo (issue 10): the server's round
 //! trip (request, stage, overlay and rectified image fetched) against the same stage run by the
-//! `castellan rectify` and `castellan facade` commands on the same photo. Figures are printed,
+//! `castellan rectify` and `castellan facade` commands on the same photo, and the live probability
+//! map of the boxes (issue 21). Figures are printed,
 //! never asserted (docs/serve.md, Measured). Ignored by default; run with
 //! `cargo test -p castellan --release --test serve_speed -- --ignored --nocapture`.
 
@@ -129,12 +130,26 @@ fn overlays_of_a_megapixel_photo_against_the_commands() {
             "cli_facade.png",
         ],
     );
+    // Issue 21: the live probability map the page asks for after each box, on the same photo.
+    let boxes = serde_json::to_vec(&elevation.training).unwrap();
+    let preview = median(
+        (0..RUNS)
+            .map(|_| {
+                let t = Instant::now();
+                let (status, png) =
+                    server.request("POST", "/api/facades/elevation.png/preview", &boxes);
+                assert_eq!(status, 200, "{}", String::from_utf8_lossy(&png));
+                ms(t)
+            })
+            .collect(),
+    );
     let figures = serde_json::json!({
         "photo": format!("{w}x{h} ({mpx:.2} Mpx)"),
         "rectify": {"serve_round_trip_ms": rect_round, "serve_stage_ms": rect_stage,
                     "fetched_bytes": rect_bytes, "cli_ms": rect_cli},
         "facade": {"serve_round_trip_ms": fac_round, "serve_stage_ms": fac_stage,
                    "fetched_bytes": fac_bytes, "cli_ms": fac_cli},
+        "preview": {"serve_round_trip_ms": preview},
     });
     eprintln!("serve speed figures: {figures}");
     assert!(mpx > 0.9 && mpx < 1.2, "{mpx} Mpx");
