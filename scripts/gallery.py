@@ -297,14 +297,21 @@ def gallery_elevation(e, info, tmp):
     training.write_text(json.dumps({"classes": e["training"]}))
     row = {"stem": stem, "input": "input" + src.suffix, "castle": info.get("castle", stem),
            "book": info.get("book", ""), "author": info.get("author", "")}
-    ok, secs, msg = run(["facade", src, "--training", training, "-o", tmp / f"{stem}.facade.json",
-                         "--overlay", dst / "facade.png"])
-    row.update(facade_ok=ok, facade_secs=secs, facade_msg=msg)
-    if ok:
-        f = json.loads((tmp / f"{stem}.facade.json").read_text())
-        row["facades"] = len(f["facades"])
-        row["floors"] = sum(len(x["floors"]) for x in f["facades"])
-        row["windows"] = sum(len(fl["windows"]) for x in f["facades"] for fl in x["floors"])
+    # The default classifier (filter bank + random forest) and the text's GMM (§3.1.3–3.1.4),
+    # each with its probability map before the search, so the two can be judged side by side.
+    for classifier, suffix in (("forest", ""), ("gmm", "_gmm")):
+        ok, secs, msg = run(["facade", src, "--training", training, "-o",
+                             tmp / f"{stem}{suffix}.facade.json", "--classifier", classifier,
+                             "--overlay", dst / f"facade{suffix}.png",
+                             "--probabilities", dst / f"pixels{suffix}.png"])
+        row.update({f"facade{suffix}_ok": ok, f"facade{suffix}_secs": secs,
+                    f"facade{suffix}_msg": msg})
+        if ok:
+            f = json.loads((tmp / f"{stem}{suffix}.facade.json").read_text())
+            row[f"facades{suffix}"] = len(f["facades"])
+            row[f"floors{suffix}"] = sum(len(x["floors"]) for x in f["facades"])
+            row[f"windows{suffix}"] = sum(len(fl["windows"]) for x in f["facades"]
+                                          for fl in x["floors"])
     ok, secs, msg = run(["gothic", src, "-o", tmp / f"{stem}.gothic.json", "--overlay",
                          dst / "gothic.png", "--masonry", tmp / f"{stem}.masonry.png"])
     row.update(gothic_ok=ok, gothic_secs=secs, gothic_msg=msg)
@@ -368,26 +375,36 @@ def page(plans, elevations, elapsed):
                    f"{img('walls.svg')} | {img('model.png')} |")
     out += ["", "## Elevations", "",
             "Each orthographic elevation through the rectangular façade stage (`castellan facade`",
-            "with the training boxes in scripts/gallery.py; windows green, wall purple, floors and",
-            "façades outlined) and the Gothic stage (`castellan gothic`: arches and rectangles,",
+            "with the training boxes in scripts/gallery.py; windows green, wall magenta,",
+            "background red, floors and façades outlined): first the pixel classifier's class",
+            "probabilities (`--probabilities`, blended where unsure), then the façade tree — with",
+            "the default classifier (filter bank + random forest, issue 21) and with the",
+            "dissertation's GMM (`--classifier gmm`, §3.1.3–3.1.4) —",
+            "and the Gothic stage (`castellan gothic`: arches and rectangles,",
             "groups, nesting). Where one plan shape is the building drawn, the elevation is",
             "reconstructed with its paired plan (`[[facade]]` with the façade's outline `bbox`;",
             "the model cell also shows the façade search inside that outline);",
             "otherwise the row says why not.", "",
-            "| drawing | façade stage | Gothic stage | input | façade | Gothic | model |",
-            "| --- | --- | --- | --- | --- | --- | --- |"]
+            "| drawing | façade stage | Gothic stage | input | probabilities (forest) | façade (forest) | "
+            "probabilities (GMM) | façade (GMM) | Gothic | model |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in elevations:
         d = f"gallery/elevations/{r['stem']}"
         who = f"**{r['castle']}**<br>{r['author']}, *{r['book']}*<br>`{r['stem']}`"
-        fac = (f"{r['facades']} façades, {r['floors']} floors, {r['windows']} windows, "
-               f"{r['facade_secs']:.1f} s" if r["facade_ok"] else f"**failed**: {r['facade_msg']}")
+        def fac_cell(suffix, name):
+            if not r[f"facade{suffix}_ok"]:
+                return f"{name}: **failed**: {r[f'facade{suffix}_msg']}"
+            return (f"{name}: {r[f'facades{suffix}']} façades, {r[f'floors{suffix}']} floors, "
+                    f"{r[f'windows{suffix}']} windows, {r[f'facade{suffix}_secs']:.1f} s")
+        fac = fac_cell("", "forest") + "<br>" + fac_cell("_gmm", "GMM")
         got = (f"{r['elements']} elements, {r['groups']} groups, {r['gothic_secs']:.1f} s"
                if r["gothic_ok"] else f"**failed**: {r['gothic_msg']}")
         img = lambda n: f"![]({d}/{n})" if (OUT / "elevations" / r["stem"] / n).is_file() else "—"
         model = (f"{img('model.png')}<br>{r.get('mapped', '')}<br>façade search inside the outline:"
                  f"<br>{img('facade_in_outline.png')}" if r.get("model_ok")
                  else f"no model: {r.get('model_msg', '')}")
-        out.append(f"| {who} | {fac} | {got} | {img(r['input'])} | {img('facade.png')} | "
+        out.append(f"| {who} | {fac} | {got} | {img(r['input'])} | {img('pixels.png')} | "
+                   f"{img('facade.png')} | {img('pixels_gmm.png')} | {img('facade_gmm.png')} | "
                    f"{img('gothic.png')} | {model} |")
     return "\n".join(out) + "\n"
 
