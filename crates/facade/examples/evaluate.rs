@@ -13,7 +13,8 @@
 //!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
 //!   wrong class per image, default 20) to measure the search alone.
 //! - FACADE_GRAMMAR=text|columns: the search's grammar (`facade::search::Grammar`; default
-//!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
+//!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
+//!   FACADE_COLUMN_COST, FACADE_WINDOW_BIAS, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
 //! - FACADE_REPEAT=0|1: propose the other windows from whole-window boxes (`facade::repeat`)
 //!   and add them to the training.
 //! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
@@ -96,6 +97,9 @@ fn search_params() -> SearchParams {
     };
     p.clip = env_f64("FACADE_CLIP", p.clip);
     p.facade_penalty = env_f64("FACADE_PENALTY", p.facade_penalty);
+    p.min_window_frac = env_f64("FACADE_MIN_WINDOW", p.min_window_frac);
+    p.column_cost = env_f64("FACADE_COLUMN_COST", p.column_cost);
+    p.window_bias = env_f64("FACADE_WINDOW_BIAS", p.window_bias);
     p.rounds = env_usize("FACADE_ROUNDS", p.rounds);
     p.min_facade_frac = env_f64("FACADE_MIN_FACADE", p.min_facade_frac);
     p.merge_tolerance = env_f64("FACADE_MERGE", p.merge_tolerance);

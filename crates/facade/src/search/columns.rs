@@ -19,10 +19,16 @@ use super::gradients::{Gradients, Integral};
 use super::params::SearchParams;
 use crate::model::{Facade, FacadeParams, Floor, MAX_COLUMNS};
 
-/// Disjoint intervals [a, b) of `prof` that maximise the sum of `prof` over them, each at least
-/// `min_w` long and at least `min_gap` from the next, left to right; at most [`MAX_COLUMNS`]
-/// (the strongest). Empty when no interval has a positive sum. O(n²).
-pub fn best_intervals(prof: &[f64], min_w: usize, min_gap: usize) -> Vec<(usize, usize)> {
+/// Disjoint intervals [a, b) of `prof` that maximise the sum of `prof` over them less `cost`
+/// per interval, each at least `min_w` long and at least `min_gap` from the next, left to
+/// right; at most [`MAX_COLUMNS`] (the strongest). Empty when no interval is worth its cost.
+/// O(n²).
+pub fn best_intervals(
+    prof: &[f64],
+    min_w: usize,
+    min_gap: usize,
+    cost: f64,
+) -> Vec<(usize, usize)> {
     let n = prof.len();
     let min_w = min_w.max(1);
     let mut pre = vec![0f64; n + 1];
@@ -40,7 +46,7 @@ pub fn best_intervals(prof: &[f64], min_w: usize, min_gap: usize) -> Vec<(usize,
         }
         for a in 0..=b - min_w {
             let before = if a >= min_gap { best[a - min_gap] } else { 0.0 };
-            let v = before + pre[b] - pre[a];
+            let v = before + pre[b] - pre[a] - cost;
             if v > best[b] {
                 best[b] = v;
                 from[b] = Some(a);
@@ -139,7 +145,15 @@ pub fn fit_columns(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPar
             .map(|y| (y, y + 1))
             .collect();
     }
-    let first = best_intervals(&col_profile(&start), MIN_SIZE, MIN_SIZE);
+    // Departure 1's regularisers: windows and gaps at least `min_window_frac` of the façade's
+    // width, and each column costs `column_cost` pixels of evidence per window row (without
+    // them a noisy map gives a barcode of one-pixel columns).
+    let min_w = ((p.min_window_frac * fw as f64).round() as usize).max(MIN_SIZE);
+    let columns_of = |prof: &[f64], rows: usize| -> Vec<(usize, usize)> {
+        best_intervals(prof, min_w, min_w, p.column_cost * rows as f64)
+    };
+    let span = |rows: &[(usize, usize)]| -> usize { rows.iter().map(|r| r.1 - r.0).sum() };
+    let first = columns_of(&col_profile(&start), start.len());
     let mut cols: [Vec<(usize, usize)>; 3] = [first.clone(), first.clone(), first];
     let mut ver = Vertical {
         n_l: 1,
@@ -163,12 +177,12 @@ pub fn fit_columns(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPar
             ver = new_ver;
             break;
         }
-        let common = best_intervals(&col_profile(&every), MIN_SIZE, MIN_SIZE);
+        let common = columns_of(&col_profile(&every), span(&every));
         let new_cols = rows.clone().map(|k| {
             if k.is_empty() {
                 common.clone()
             } else {
-                best_intervals(&col_profile(&k), MIN_SIZE, MIN_SIZE)
+                columns_of(&col_profile(&k), span(&k))
             }
         });
         let same = new_ver == ver && new_cols == cols;
@@ -262,12 +276,16 @@ mod tests {
     fn intervals_on_literal_profiles() {
         let p = [-1.0, 2.0, 2.0, -1.0, 3.0, -5.0, 1.0, 1.0, 1.0];
         // Free: every positive run.
-        assert_eq!(best_intervals(&p, 1, 1), vec![(1, 3), (4, 5), (6, 9)]);
+        assert_eq!(best_intervals(&p, 1, 1, 0.0), vec![(1, 3), (4, 5), (6, 9)]);
         // Windows at least 3 wide: [1, 5) (sum 6) and [6, 9) (3).
-        assert_eq!(best_intervals(&p, 3, 1), vec![(1, 5), (6, 9)]);
+        assert_eq!(best_intervals(&p, 3, 1, 0.0), vec![(1, 5), (6, 9)]);
         // Gaps of at least 2: the single wall columns at 3 and 5 cannot separate windows.
-        assert_eq!(best_intervals(&p, 1, 2), vec![(1, 5), (7, 9)]);
-        assert!(best_intervals(&[-1.0, -2.0], 1, 1).is_empty());
-        assert!(best_intervals(&[], 1, 1).is_empty());
+        assert_eq!(best_intervals(&p, 1, 2, 0.0), vec![(1, 5), (7, 9)]);
+        // A cost of 2.5 per interval: [1, 5) (6 − 2.5) and [6, 9) (3 − 2.5) beat three.
+        assert_eq!(best_intervals(&p, 1, 1, 2.5), vec![(1, 5), (6, 9)]);
+        // A cost of 4: one interval, [1, 9) (4) < [1, 5) (6).
+        assert_eq!(best_intervals(&p, 1, 1, 4.0), vec![(1, 5)]);
+        assert!(best_intervals(&[-1.0, -2.0], 1, 1, 0.0).is_empty());
+        assert!(best_intervals(&[], 1, 1, 0.0).is_empty());
     }
 }

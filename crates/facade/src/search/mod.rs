@@ -41,7 +41,7 @@ pub fn parse(img: &RgbImage, ll: &LogLikelihoods, p: &SearchParams) -> Result<Fa
     let d: Vec<f64> = win
         .iter()
         .zip(wall)
-        .map(|(a, b)| ((a - b) as f64).clamp(-p.clip, p.clip))
+        .map(|(a, b)| ((a - b) as f64 - p.window_bias).clamp(-p.clip, p.clip))
         .collect();
     let di = Integral::new(&d, w, h);
     let facades = rects

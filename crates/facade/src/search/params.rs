@@ -41,6 +41,15 @@ pub struct SearchParams {
     /// log-ratio units) in the boundary search: a prior against splitting one building into
     /// strips. 0: the text.
     pub facade_penalty: f64,
+    /// `Grammar::Columns`: windows and the gaps between them are at least this fraction of
+    /// the façade's width.
+    pub min_window_frac: f64,
+    /// `Grammar::Columns`: each window column costs this many pixels of evidence (clipped
+    /// log-ratio) per window row.
+    pub column_cost: f64,
+    /// Subtracted from the window − wall log-ratio before it is clipped: ln of the prior odds
+    /// of wall against window (0: equal priors, the text's maximum likelihood).
+    pub window_bias: f64,
 }
 
 impl SearchParams {
@@ -50,6 +59,9 @@ impl SearchParams {
             grammar: Grammar::Text,
             clip: f64::INFINITY,
             facade_penalty: 0.0,
+            min_window_frac: 0.0,
+            column_cost: 0.0,
+            window_bias: 0.0,
             ..SearchParams::default()
         }
     }
@@ -66,6 +78,9 @@ impl Default for SearchParams {
             grammar: Grammar::Columns,
             clip: 1.0,
             facade_penalty: 0.02,
+            min_window_frac: 0.02,
+            column_cost: 0.0,
+            window_bias: 0.0,
         }
     }
 }
