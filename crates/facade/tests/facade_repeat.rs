@@ -31,7 +31,7 @@ fn one_window_finds_the_other_eleven_of_a_4_by_3_grid() {
     assert_eq!(r.columns.len(), 4, "{:?}", r.columns);
     assert_eq!(r.rows.len(), 3, "{:?}", r.rows);
     // The template itself is kept with score 1, the others below.
-    assert!(r.scores.iter().all(|&v| v >= 0.6 && v <= 1.0));
+    assert!(r.scores.iter().all(|v| (0.6..=1.0).contains(v)));
 }
 
 #[test]
