@@ -15,8 +15,9 @@
 //! - FACADE_GRAMMAR=text|columns: the search's grammar (`facade::search::Grammar`; default
 //!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
 //!   FACADE_COLUMN_COST, FACADE_WINDOW_BIAS, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
-//! - FACADE_REPEAT=0|1: propose the other windows from whole-window boxes (`facade::repeat`)
-//!   and add them to the training.
+//! - FACADE_REPEAT=0|1: propose the other windows from whole-window boxes (`facade::repeat`,
+//!   acceptance FACADE_REPEAT_THRESHOLD) and add the strongest FACADE_REPEAT_MAX (default 6)
+//!   to the window boxes; prints the proposals' precision and recall.
 //! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
 //! - FACADE_DUMP=dir: truth, map and tree label images per photo.
 
@@ -24,7 +25,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use facade::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
-use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside};
+use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside, simulate_window_user};
+use facade::repeat::{RepeatParams, find_repeats};
 use facade::search::{SearchParams, parse};
 
 use rand::{RngExt, SeedableRng};
@@ -179,16 +181,74 @@ fn box_blur(v: &[f32], w: usize, h: usize, r: usize) -> Vec<f32> {
 
 /// The simulated user of FACADE_USER.
 fn user(truth: &[u8], w: usize, h: usize) -> Option<Training> {
-    simulate_user_inside(
-        truth,
-        w,
-        h,
-        3,
-        env_usize("FACADE_BOX", 9),
-        env_usize("FACADE_MARGIN", 0),
-        1,
-    )
-    .ok()
+    let side = env_usize("FACADE_BOX", 9);
+    if env_str("FACADE_USER", "boxes") == "windows" {
+        return simulate_window_user(truth, w, h, 3, 3, side, 1).ok();
+    }
+    simulate_user_inside(truth, w, h, 3, side, env_usize("FACADE_MARGIN", 0), 1).ok()
+}
+
+/// FACADE_REPEAT: the user's whole windows' repeats, the strongest FACADE_REPEAT_MAX (default
+/// 6) added to the window boxes. Returns (proposals, of which match a true window).
+fn add_repeats(
+    img: &image::RgbImage,
+    truth: &[u8],
+    training: &mut Training,
+) -> (usize, usize, usize) {
+    let Some(wins) = training.classes.get(&Class::Window).cloned() else {
+        return (0, 0, 0);
+    };
+    let p = RepeatParams {
+        threshold: env_f64("FACADE_REPEAT_THRESHOLD", RepeatParams::default().threshold),
+        ..Default::default()
+    };
+    let r = find_repeats(img, &wins, &p);
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let comps = raster_boxes(truth, w, h);
+    let new: Vec<([f64; 4], f64)> = r
+        .windows
+        .iter()
+        .zip(&r.scores)
+        .filter(|(b, _)| !wins.contains(b))
+        .map(|(b, s)| (*b, *s))
+        .collect();
+    let good = new
+        .iter()
+        .filter(|(b, _)| comps.iter().any(|c| box_iou(b, c) > 0.5))
+        .count();
+    let mut best = new.clone();
+    best.sort_by(|a, b| b.1.total_cmp(&a.1));
+    best.truncate(env_usize("FACADE_REPEAT_MAX", 6));
+    if let Some(v) = training.classes.get_mut(&Class::Window) {
+        v.extend(best.iter().map(|b| b.0));
+    }
+    (new.len(), good, comps.len())
+}
+
+/// Bounding boxes of the true windows (8-connected components of the window class).
+fn raster_boxes(truth: &[u8], w: usize, h: usize) -> Vec<[f64; 4]> {
+    let c =
+        raster::components::components_where(w, h, raster::components::Connectivity::Eight, |i| {
+            truth[i] == 2
+        });
+    c.bbox[1..]
+        .iter()
+        .map(|b| {
+            [
+                b[0] as f64,
+                b[1] as f64,
+                b[2] as f64 + 1.0,
+                b[3] as f64 + 1.0,
+            ]
+        })
+        .collect()
+}
+
+fn box_iou(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let iw = (a[2].min(b[2]) - a[0].max(b[0])).max(0.0);
+    let ih = (a[3].min(b[3]) - a[1].max(b[1])).max(0.0);
+    let area = |r: &[f64; 4]| (r[2] - r[0]) * (r[3] - r[1]);
+    iw * ih / (area(a) + area(b) - iw * ih).max(1e-12)
 }
 
 #[derive(Default)]
@@ -200,6 +260,9 @@ struct Sums {
     iou: f64,
     secs: f64,
     diag: Diag,
+    proposals: usize,
+    good: usize,
+    true_windows: usize,
 }
 
 /// FACADE_DIAG: where the tree loses against the map.
@@ -262,10 +325,16 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             eprintln!("{}: label size mismatch, skipped", img_path.display());
             continue;
         }
-        let Some(training) = user(&truth, w, h) else {
+        let Some(mut training) = user(&truth, w, h) else {
             continue;
         };
         let t = Instant::now();
+        if env_str("FACADE_REPEAT", "0") == "1" {
+            let (n, good, truth_n) = add_repeats(&img, &truth, &mut training);
+            s.proposals += n;
+            s.good += good;
+            s.true_windows += truth_n;
+        }
         let ll = if use_oracle {
             oracle(&truth, w, h, i as u64 + 1)
         } else {
@@ -344,6 +413,16 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.iou / n,
         s.secs / n
     );
+    if s.proposals > 0 || env_str("FACADE_REPEAT", "0") == "1" {
+        eprintln!(
+            "{name}: repeats proposed {} (beyond the user's), {} match a true window (IoU > 0.5): precision {:.3}, recall {:.3} of {} true windows",
+            s.proposals,
+            s.good,
+            s.good as f64 / s.proposals.max(1) as f64,
+            s.good as f64 / s.true_windows.max(1) as f64,
+            s.true_windows
+        );
+    }
     if std::env::var("FACADE_DIAG").is_ok() {
         let d = &s.diag;
         eprintln!(

@@ -34,7 +34,7 @@ pub struct RepeatParams {
 impl Default for RepeatParams {
     fn default() -> Self {
         RepeatParams {
-            threshold: 0.6,
+            threshold: 0.7,
             coarse_side: 16,
             max_overlap: 0.2,
             max_proposals: 200,
