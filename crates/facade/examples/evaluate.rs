@@ -7,7 +7,8 @@
 //! Environment (experiments; defaults are the documented table):
 //! - FACADE_USER=boxes|windows: three s × s boxes per class (default), or whole-window boxes
 //!   (up to three ground-truth window components) with s × s boxes for wall and background.
-//! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS.
+//! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS,
+//!   FACADE_CLASSIFIER (gmm or forest, default forest).
 //! - FACADE_MAP=model|oracle: the classifier's map (default), or an experiment map made from
 //!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
 //!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
@@ -24,7 +25,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use facade::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training, classify};
 use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside, simulate_window_user};
 use facade::repeat::{RepeatParams, find_repeats};
 use facade::search::{SearchParams, parse};
@@ -77,6 +78,9 @@ fn env_str(name: &str, default: &str) -> String {
 
 fn classify_params() -> ClassifyParams {
     let mut p = ClassifyParams::default();
+    if std::env::var("FACADE_CLASSIFIER").as_deref() == Ok("gmm") {
+        p.method = Method::Gmm;
+    }
     if let Some(r) = std::env::var("FACADE_RIDGE_REL")
         .ok()
         .and_then(|v| v.parse().ok())

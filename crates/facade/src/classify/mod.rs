@@ -1,8 +1,13 @@
-//! Pixel classes (§3.1.2–3.1.4): user boxes per class (TRAINING.json) → 18-D features → one
-//! Gaussian mixture per class (as many components as boxes, EM) → per-pixel class
-//! log-likelihoods ln P_kj and the initial minimum-error segmentation.
+//! Pixel classes (§3.1.2–3.1.4): user boxes per class (TRAINING.json) → per-pixel class
+//! log-likelihoods ln P_kj and the initial minimum-error segmentation. Two methods
+//! ([`Method`]):
+//! - the text's (§3.1.3–3.1.4, [`Method::Gmm`]): 18-D features (RGB + patch PCA) → one
+//!   Gaussian mixture per class (as many components as boxes, EM) → ln P_kj;
+//! - the default ([`Method::Forest`], departure, [`forest`]): an ilastik-style filter bank and
+//!   random forest ([`pixelclass`]) → ln p per class.
 
 pub mod features;
+pub mod forest;
 pub mod gmm;
 pub mod project;
 mod simd;
@@ -129,11 +134,30 @@ impl Training {
     }
 }
 
+/// Which per-pixel classifier turns the boxes into class evidence.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Departure (§3.1.3–3.1.4, issue 21): the [`pixelclass`] filter bank and random forest;
+    /// the log-likelihoods are ln p of the forest's class probabilities ([`forest`]).
+    #[default]
+    Forest,
+    /// The text's method (§3.1.3–3.1.4): RGB + patch-PCA features, one Gaussian mixture per
+    /// class.
+    Gmm,
+}
+
 /// Classifier settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ClassifyParams {
+    pub method: Method,
+    /// The GMM's features; `features.seed` is the seed of either method (box sampling, EM,
+    /// the forest's trees).
     pub features: FeatureParams,
-    /// Pixels sampled (seeded) per training box.
+    /// The forest's filter bank, trees and working resolution ([`Method::Forest`]); its
+    /// `forest.seed` is replaced by `features.seed`.
+    pub pixel: pixelclass::Params,
+    /// Pixels sampled (seeded) per training box, by either method.
     pub samples_per_box: usize,
     /// Ridge added to every covariance diagonal (features are in [0, 1] units).
     pub ridge: f64,
@@ -148,7 +172,9 @@ pub struct ClassifyParams {
 impl Default for ClassifyParams {
     fn default() -> Self {
         ClassifyParams {
+            method: Method::default(),
             features: FeatureParams::default(),
+            pixel: pixelclass::Params::default(),
             samples_per_box: 400,
             ridge: 1e-4,
             ridge_rel: 0.05,
@@ -294,7 +320,7 @@ fn ridge_vector(f: &Features, p: &ClassifyParams) -> Vec<f64> {
         .collect()
 }
 
-/// Features, training and per-pixel log-likelihoods in one call. A single-colour image is an
+/// Features, training and per-pixel log-likelihoods in one call, by `p.method`. A single-colour image is an
 /// error: no boxes can tell classes apart in it.
 pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Result<LogLikelihoods> {
     let (w, h) = img.dimensions();
@@ -311,7 +337,10 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
             "the image has a single colour; no classes can be told apart".into(),
         ));
     }
-    training.boxes(w as usize, h as usize)?;
+    let boxes = training.boxes(w as usize, h as usize)?;
+    if p.method == Method::Forest {
+        return forest::log_likelihoods(img, &boxes, p);
+    }
     let f = features::compute(img, &p.features);
     let c = Classifier::train(&f, training, p)?;
     Ok(c.log_likelihoods(&f))
