@@ -1,18 +1,43 @@
-//! Accuracy on CMP base and Paris Art-deco (../shared/data): a simulated user draws three
-//! seeded 9-pixel boxes per class inside the ground truth; we report pixel accuracy and window
-//! IoU of the GMM labels alone and of the fitted façade model, and the time per image.
+//! Accuracy on CMP base and Paris Art-deco (../shared/data, or the folder in FACADE_DATA): a
+//! simulated user draws training boxes inside the ground truth; we report pixel accuracy and
+//! window IoU of the per-pixel map alone and of the fitted façade tree, and the time per image.
 //!
 //! `cargo run --release -p facade --example evaluate [MAX_IMAGES_PER_SET]`
+//!
+//! Environment (experiments; defaults are the documented table):
+//! - FACADE_USER=boxes|windows: three s × s boxes per class (default), or whole-window boxes
+//!   (up to three ground-truth window components) with s × s boxes for wall and background.
+//! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS,
+//!   FACADE_CLASSIFIER (gmm or forest, default forest).
+//! - FACADE_MAP=model|oracle: the classifier's map (default), or an experiment map made from
+//!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
+//!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
+//!   wrong class per image, default 20) to measure the search alone.
+//! - FACADE_GRAMMAR=text|columns: the search's grammar (`facade::search::Grammar`; default
+//!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
+//!   FACADE_COLUMN_COST, FACADE_WINDOW_BIAS, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
+//! - FACADE_REPEAT=0|1: propose the other windows from whole-window boxes (`facade::repeat`,
+//!   acceptance FACADE_REPEAT_THRESHOLD) and add the strongest FACADE_REPEAT_MAX (default 6)
+//!   to the window boxes; prints the proposals' precision and recall.
+//! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
+//! - FACADE_DUMP=dir: truth, map and tree label images per photo.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use facade::classify::{Class, ClassifyParams, Method, classify};
-use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training, classify};
+use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside, simulate_window_user};
+use facade::repeat::{RepeatParams, find_repeats};
 use facade::search::{SearchParams, parse};
 
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
 fn data() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data")
+    match std::env::var("FACADE_DATA") {
+        Ok(d) => PathBuf::from(d),
+        Err(_) => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"),
+    }
 }
 
 /// CMP masks are palette PNGs; the image crate expands them to RGB, so map the palette back.
@@ -36,18 +61,19 @@ fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
     )
 }
 
-/// Overrides for experiments: FACADE_BOX (box side, default 9), FACADE_MARGIN (clearance of the
-/// boxes from their class's border, default 0), FACADE_RIDGE_REL, FACADE_PCS
-/// (principal components per channel), FACADE_CLASSIFIER (gmm or forest, default forest).
-fn box_side() -> usize {
-    env_usize("FACADE_BOX", 9)
+fn env_usize(name: &str, default: usize) -> usize {
+    env_f64(name, default as f64) as usize
 }
 
-fn env_usize(name: &str, default: usize) -> usize {
+fn env_f64(name: &str, default: f64) -> f64 {
     std::env::var(name)
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(default)
+}
+
+fn env_str(name: &str, default: &str) -> String {
+    std::env::var(name).unwrap_or_else(|_| default.to_string())
 }
 
 fn classify_params() -> ClassifyParams {
@@ -70,6 +96,165 @@ fn classify_params() -> ClassifyParams {
     p
 }
 
+fn search_params() -> SearchParams {
+    let mut p = match env_str("FACADE_GRAMMAR", "columns").as_str() {
+        "text" => SearchParams::text(),
+        _ => SearchParams::default(),
+    };
+    p.clip = env_f64("FACADE_CLIP", p.clip);
+    p.facade_penalty = env_f64("FACADE_PENALTY", p.facade_penalty);
+    p.min_window_frac = env_f64("FACADE_MIN_WINDOW", p.min_window_frac);
+    p.column_cost = env_f64("FACADE_COLUMN_COST", p.column_cost);
+    p.window_bias = env_f64("FACADE_WINDOW_BIAS", p.window_bias);
+    p.rounds = env_usize("FACADE_ROUNDS", p.rounds);
+    p.min_facade_frac = env_f64("FACADE_MIN_FACADE", p.min_facade_frac);
+    p.merge_tolerance = env_f64("FACADE_MERGE", p.merge_tolerance);
+    p
+}
+
+/// An experiment map from the ground truth: the true class gets +gap/2, the others −gap/2,
+/// plus smooth noise (white noise box-blurred over 7 px, rescaled to `sigma`) per class, plus
+/// `flips` discs (radius 3–20 px) where a wrong class gets +gap.
+fn oracle(truth: &[u8], w: usize, h: usize, seed: u64) -> LogLikelihoods {
+    let gap = env_f64("FACADE_ORACLE_GAP", 2.0) as f32;
+    let sigma = env_f64("FACADE_ORACLE_NOISE", 2.0) as f32;
+    let flips = env_usize("FACADE_ORACLE_FLIPS", 20);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
+    for (ci, map) in maps.iter_mut().enumerate() {
+        let white: Vec<f32> = (0..w * h).map(|_| rng.random_range(-1.0f32..1.0)).collect();
+        let blur = box_blur(&white, w, h, 3);
+        let var = blur.iter().map(|v| v * v).sum::<f32>() / blur.len().max(1) as f32;
+        let k = sigma / var.sqrt().max(1e-9);
+        *map = Some(
+            truth
+                .iter()
+                .zip(&blur)
+                .map(|(&t, &n)| {
+                    let base = if t == IGNORE {
+                        0.0
+                    } else if t as usize == ci {
+                        gap / 2.0
+                    } else {
+                        -gap / 2.0
+                    };
+                    base + k * n
+                })
+                .collect(),
+        );
+    }
+    for _ in 0..flips {
+        let (cx, cy) = (rng.random_range(0..w), rng.random_range(0..h));
+        let r = rng.random_range(3..=20usize);
+        let t = truth[cy * w + cx];
+        if t == IGNORE {
+            continue;
+        }
+        let wrong = (t as usize + rng.random_range(1..=2usize)) % 3;
+        let m = maps[wrong].as_mut().unwrap();
+        for y in cy.saturating_sub(r)..(cy + r + 1).min(h) {
+            for x in cx.saturating_sub(r)..(cx + r + 1).min(w) {
+                if (x.abs_diff(cx)).pow(2) + (y.abs_diff(cy)).pow(2) <= r * r {
+                    m[y * w + x] += gap;
+                }
+            }
+        }
+    }
+    LogLikelihoods {
+        width: w,
+        height: h,
+        maps,
+    }
+}
+
+fn box_blur(v: &[f32], w: usize, h: usize, r: usize) -> Vec<f32> {
+    let pass = |src: &[f32], horizontal: bool| -> Vec<f32> {
+        let mut out = vec![0f32; src.len()];
+        let (n, m) = if horizontal { (h, w) } else { (w, h) };
+        for a in 0..n {
+            let at = |b: usize| if horizontal { a * w + b } else { b * w + a };
+            for b in 0..m {
+                let (lo, hi) = (b.saturating_sub(r), (b + r + 1).min(m));
+                out[at(b)] = (lo..hi).map(|c| src[at(c)]).sum::<f32>() / (hi - lo) as f32;
+            }
+        }
+        out
+    };
+    pass(&pass(v, true), false)
+}
+
+/// The simulated user of FACADE_USER.
+fn user(truth: &[u8], w: usize, h: usize) -> Option<Training> {
+    let side = env_usize("FACADE_BOX", 9);
+    if env_str("FACADE_USER", "boxes") == "windows" {
+        return simulate_window_user(truth, w, h, 3, 3, side, 1).ok();
+    }
+    simulate_user_inside(truth, w, h, 3, side, env_usize("FACADE_MARGIN", 0), 1).ok()
+}
+
+/// FACADE_REPEAT: the user's whole windows' repeats, the strongest FACADE_REPEAT_MAX (default
+/// 6) added to the window boxes. Returns (proposals, of which match a true window).
+fn add_repeats(
+    img: &image::RgbImage,
+    truth: &[u8],
+    training: &mut Training,
+) -> (usize, usize, usize) {
+    let Some(wins) = training.classes.get(&Class::Window).cloned() else {
+        return (0, 0, 0);
+    };
+    let p = RepeatParams {
+        threshold: env_f64("FACADE_REPEAT_THRESHOLD", RepeatParams::default().threshold),
+        ..Default::default()
+    };
+    let r = find_repeats(img, &wins, &p);
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let comps = raster_boxes(truth, w, h);
+    let new: Vec<([f64; 4], f64)> = r
+        .windows
+        .iter()
+        .zip(&r.scores)
+        .filter(|(b, _)| !wins.contains(b))
+        .map(|(b, s)| (*b, *s))
+        .collect();
+    let good = new
+        .iter()
+        .filter(|(b, _)| comps.iter().any(|c| box_iou(b, c) > 0.5))
+        .count();
+    let mut best = new.clone();
+    best.sort_by(|a, b| b.1.total_cmp(&a.1));
+    best.truncate(env_usize("FACADE_REPEAT_MAX", 6));
+    if let Some(v) = training.classes.get_mut(&Class::Window) {
+        v.extend(best.iter().map(|b| b.0));
+    }
+    (new.len(), good, comps.len())
+}
+
+/// Bounding boxes of the true windows (8-connected components of the window class).
+fn raster_boxes(truth: &[u8], w: usize, h: usize) -> Vec<[f64; 4]> {
+    let c =
+        raster::components::components_where(w, h, raster::components::Connectivity::Eight, |i| {
+            truth[i] == 2
+        });
+    c.bbox[1..]
+        .iter()
+        .map(|b| {
+            [
+                b[0] as f64,
+                b[1] as f64,
+                b[2] as f64 + 1.0,
+                b[3] as f64 + 1.0,
+            ]
+        })
+        .collect()
+}
+
+fn box_iou(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let iw = (a[2].min(b[2]) - a[0].max(b[0])).max(0.0);
+    let ih = (a[3].min(b[3]) - a[1].max(b[1])).max(0.0);
+    let area = |r: &[f64; 4]| (r[2] - r[0]) * (r[3] - r[1]);
+    iw * ih / (area(a) + area(b) - iw * ih).max(1e-12)
+}
+
 #[derive(Default)]
 struct Sums {
     n: usize,
@@ -78,42 +263,99 @@ struct Sums {
     acc: f64,
     iou: f64,
     secs: f64,
+    diag: Diag,
+    proposals: usize,
+    good: usize,
+    true_windows: usize,
+}
+
+/// FACADE_DIAG: where the tree loses against the map.
+#[derive(Default)]
+struct Diag {
+    /// Truth window / wall pixels: count, with window − wall log-ratio > 0, Σ ratio clipped.
+    win_px: f64,
+    win_pos: f64,
+    wall_px: f64,
+    wall_pos: f64,
+    /// Façade pixels (truth wall or window) the tree calls background, and background it calls
+    /// façade, as fractions of the labelled pixels.
+    lost_facade: f64,
+    eaten_bg: f64,
+    /// Window pixels inside the tree's façades only (the grid's own errors).
+    grid_iou: f64,
+    n_w: f64,
+    n_l: f64,
+    facades: f64,
+}
+
+fn diagnose(d: &mut Diag, ll: &LogLikelihoods, truth: &[u8], pred: &[u8]) {
+    let (win, wall) = (ll.get(Class::Window).unwrap(), ll.get(Class::Wall).unwrap());
+    let mut n = 0.0;
+    let (mut lost, mut eaten) = (0.0, 0.0);
+    let (mut inter, mut union) = (0.0, 0.0);
+    for k in 0..truth.len() {
+        let t = truth[k];
+        if t == IGNORE {
+            continue;
+        }
+        n += 1.0;
+        let r = win[k] - wall[k];
+        if t == 2 {
+            d.win_px += 1.0;
+            d.win_pos += (r > 0.0) as u8 as f64;
+        } else if t == 1 {
+            d.wall_px += 1.0;
+            d.wall_pos += (r > 0.0) as u8 as f64;
+        }
+        lost += (t != 0 && pred[k] == 0) as u8 as f64;
+        eaten += (t == 0 && pred[k] != 0) as u8 as f64;
+        if pred[k] != 0 && t != 0 {
+            inter += (t == 2 && pred[k] == 2) as u8 as f64;
+            union += (t == 2 || pred[k] == 2) as u8 as f64;
+        }
+    }
+    d.lost_facade += lost / n;
+    d.eaten_bg += eaten / n;
+    d.grid_iou += if union > 0.0 { inter / union } else { 0.0 };
 }
 
 fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
     let mut s = Sums::default();
-    for (img_path, truth) in items {
+    let use_oracle = env_str("FACADE_MAP", "model") == "oracle";
+    for (i, (img_path, truth)) in items.into_iter().enumerate() {
         let img = image::open(&img_path).unwrap().to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
         if truth.len() != w * h {
             eprintln!("{}: label size mismatch, skipped", img_path.display());
             continue;
         }
-        let Ok(training) = simulate_user_inside(
-            &truth,
-            w,
-            h,
-            3,
-            box_side(),
-            env_usize("FACADE_MARGIN", 0),
-            1,
-        ) else {
+        let Some(mut training) = user(&truth, w, h) else {
             continue;
         };
         let t = Instant::now();
-        let ll = match classify(&img, &training, &classify_params()) {
-            Ok(ll) => ll,
-            Err(e) => {
-                eprintln!("{}: {e}", img_path.display());
-                continue;
+        if env_str("FACADE_REPEAT", "0") == "1" {
+            let (n, good, truth_n) = add_repeats(&img, &truth, &mut training);
+            s.proposals += n;
+            s.good += good;
+            s.true_windows += truth_n;
+        }
+        let ll = if use_oracle {
+            oracle(&truth, w, h, i as u64 + 1)
+        } else {
+            match classify(&img, &training, &classify_params()) {
+                Ok(ll) => ll,
+                Err(e) => {
+                    eprintln!("{}: {e}", img_path.display());
+                    continue;
+                }
             }
         };
-        let model = parse(&img, &ll, &SearchParams::default()).unwrap();
+        let model = parse(&img, &ll, &search_params()).unwrap();
         s.secs += t.elapsed().as_secs_f64();
-        let gmm: Vec<u8> = ll.initial_labels().iter().map(|c| *c as u8).collect();
+        let map: Vec<u8> = ll.initial_labels().iter().map(|c| *c as u8).collect();
         let pred = model.labels();
+        let stem = img_path.file_stem().unwrap().to_string_lossy().to_string();
         if let Ok(dir) = std::env::var("FACADE_DUMP") {
-            let stem = img_path.file_stem().unwrap().to_string_lossy().to_string();
             let grey = |v: &[u8]| {
                 image::GrayImage::from_raw(
                     w as u32,
@@ -125,15 +367,45 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             grey(&truth)
                 .save(format!("{dir}/{stem}_truth.png"))
                 .unwrap();
-            grey(&gmm).save(format!("{dir}/{stem}_gmm.png")).unwrap();
+            grey(&map).save(format!("{dir}/{stem}_map.png")).unwrap();
             grey(&pred).save(format!("{dir}/{stem}_model.png")).unwrap();
-            println!("{stem}: {:?}", training.classes);
         }
         s.n += 1;
-        s.acc0 += pixel_accuracy(&gmm, &truth);
-        s.iou0 += class_iou(&gmm, &truth, Class::Window).unwrap_or(0.0);
-        s.acc += pixel_accuracy(&pred, &truth);
-        s.iou += class_iou(&pred, &truth, Class::Window).unwrap_or(0.0);
+        let (a0, i0) = (
+            pixel_accuracy(&map, &truth),
+            class_iou(&map, &truth, Class::Window).unwrap_or(0.0),
+        );
+        let (a1, i1) = (
+            pixel_accuracy(&pred, &truth),
+            class_iou(&pred, &truth, Class::Window).unwrap_or(0.0),
+        );
+        s.acc0 += a0;
+        s.iou0 += i0;
+        s.acc += a1;
+        s.iou += i1;
+        if std::env::var("FACADE_DIAG").is_ok() {
+            diagnose(&mut s.diag, &ll, &truth, &pred);
+            for f in &model.facades {
+                s.diag.n_w += f.params.n_w as f64;
+                s.diag.n_l += f.params.n_l as f64;
+            }
+            s.diag.facades += model.facades.len() as f64;
+            let fs: Vec<String> = model
+                .facades
+                .iter()
+                .map(|f| {
+                    let p = &f.params;
+                    format!(
+                        "[{:.0},{:.0},{:.0},{:.0}] n_l {} n_w {} w_w {:.0} gap {:.0}",
+                        p.x_fl, p.y_ft, p.x_fr, p.y_fb, p.n_l, p.n_w, p.w_w, p.w_gap
+                    )
+                })
+                .collect();
+            eprintln!(
+                "{stem} {w}x{h}: map {a0:.3}/{i0:.3} tree {a1:.3}/{i1:.3} {}",
+                fs.join("; ")
+            );
+        }
     }
     let n = s.n.max(1) as f64;
     println!(
@@ -145,6 +417,30 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.iou / n,
         s.secs / n
     );
+    if s.proposals > 0 || env_str("FACADE_REPEAT", "0") == "1" {
+        eprintln!(
+            "{name}: repeats proposed {} (beyond the user's), {} match a true window (IoU > 0.5): precision {:.3}, recall {:.3} of {} true windows",
+            s.proposals,
+            s.good,
+            s.good as f64 / s.proposals.max(1) as f64,
+            s.good as f64 / s.true_windows.max(1) as f64,
+            s.true_windows
+        );
+    }
+    if std::env::var("FACADE_DIAG").is_ok() {
+        let d = &s.diag;
+        eprintln!(
+            "{name}: window px with ratio > 0: {:.3}; wall px with ratio > 0: {:.3}; façade lost to background {:.3}, background eaten {:.3}; window IoU inside both façades {:.3}; façades/image {:.2}, mean n_l {:.2}, n_w {:.2}",
+            d.win_pos / d.win_px.max(1.0),
+            d.wall_pos / d.wall_px.max(1.0),
+            d.lost_facade / n,
+            d.eaten_bg / n,
+            d.grid_iou / n,
+            d.facades / n,
+            d.n_l / d.facades.max(1.0),
+            d.n_w / d.facades.max(1.0),
+        );
+    }
 }
 
 fn main() {
@@ -154,11 +450,14 @@ fn main() {
         .unwrap_or(usize::MAX);
     let d = data();
     if !d.is_dir() {
-        eprintln!("no ../shared/data next to the repository; nothing to evaluate");
+        eprintln!(
+            "no data folder at {} (set FACADE_DATA); nothing to evaluate",
+            d.display()
+        );
         return;
     }
     println!(
-        "| set | images | GMM pixel acc. | GMM window IoU | model pixel acc. | model window IoU | s / image |"
+        "| set | images | map pixel acc. | map window IoU | tree pixel acc. | tree window IoU | s / image |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- |");
     let mut cmp: Vec<(PathBuf, Vec<u8>)> = Vec::new();

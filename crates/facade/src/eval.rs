@@ -1,5 +1,6 @@
-//! Accuracy against ground-truth label images (0 background, 1 wall, 2 window) and a simulated
-//! user who draws small training boxes inside ground-truth regions (issue 4's evaluation).
+//! Accuracy against ground-truth label images (0 background, 1 wall, 2 window) and simulated
+//! users: one who draws small training boxes inside ground-truth regions (issue 4's
+//! evaluation), one who marks whole windows (issue 21).
 
 use std::collections::BTreeMap;
 
@@ -160,6 +161,72 @@ pub fn simulate_user_inside(
     Ok(Training { classes })
 }
 
+/// A user who marks whole windows: the bounding boxes ([x0, y0, x1, y1], exclusive ends) of up
+/// to `windows` connected components (8-connected) of the window class in `truth`, spread out
+/// (seeded farthest-point choice among components at least a quarter of the median
+/// component's area, so that window fragments and slivers are not picked), and, for the other
+/// classes, the `side` × `side` boxes of [`simulate_user`].
+pub fn simulate_window_user(
+    truth: &[u8],
+    w: usize,
+    h: usize,
+    windows: usize,
+    per_class: usize,
+    side: usize,
+    seed: u64,
+) -> Result<Training> {
+    let mut t = simulate_user(truth, w, h, per_class, side, seed)?;
+    let comps =
+        raster::components::components_where(w, h, raster::components::Connectivity::Eight, |i| {
+            truth[i] == Class::Window as u8
+        });
+    let mut sizes: Vec<usize> = comps.sizes[1..].to_vec();
+    sizes.sort_unstable();
+    let median = sizes.get(sizes.len() / 2).copied().unwrap_or(0);
+    let mut cands: Vec<[f64; 4]> = (1..comps.sizes.len())
+        .filter(|&l| comps.sizes[l] * 4 >= median && comps.sizes[l] > 0)
+        .map(|l| {
+            let b = comps.bbox[l];
+            [
+                b[0] as f64,
+                b[1] as f64,
+                b[2] as f64 + 1.0,
+                b[3] as f64 + 1.0,
+            ]
+        })
+        .collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x77);
+    let centre = |b: &[f64; 4]| ((b[0] + b[2]) / 2.0, (b[1] + b[3]) / 2.0);
+    let mut chosen: Vec<[f64; 4]> = Vec::new();
+    if !cands.is_empty() {
+        chosen.push(cands.swap_remove(rng.random_range(0..cands.len())));
+    }
+    while chosen.len() < windows && !cands.is_empty() {
+        let far = |b: &[f64; 4]| {
+            let (x, y) = centre(b);
+            chosen
+                .iter()
+                .map(|c| {
+                    let (cx, cy) = centre(c);
+                    (cx - x).hypot(cy - y)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let (i, _) = cands
+            .iter()
+            .enumerate()
+            .max_by(|a, b| far(a.1).total_cmp(&far(b.1)))
+            .expect("not empty");
+        chosen.push(cands.swap_remove(i));
+    }
+    if chosen.is_empty() {
+        t.classes.remove(&Class::Window);
+    } else {
+        t.classes.insert(Class::Window, chosen);
+    }
+    Ok(t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -206,5 +273,35 @@ mod tests {
         for b in &t.classes[&Class::Wall] {
             assert!(b[2] <= 10.0 || b[0] >= 30.0, "{b:?}");
         }
+    }
+
+    #[test]
+    fn window_user_marks_whole_spread_windows() {
+        // A 60 x 20 wall with windows at x 2..8, 20..26, 40..46, 52..58 (rows 5..15) and a
+        // one-pixel speck at (30, 2), too small to be chosen.
+        let (w, h) = (60, 20);
+        let mut truth = vec![1u8; w * h];
+        for x0 in [2, 20, 40, 52] {
+            for y in 5..15 {
+                for x in x0..x0 + 6 {
+                    truth[y * w + x] = 2;
+                }
+            }
+        }
+        truth[2 * w + 30] = 2;
+        let t = simulate_window_user(&truth, w, h, 2, 3, 3, 5).unwrap();
+        let wins = &t.classes[&Class::Window];
+        assert_eq!(wins.len(), 2);
+        for b in wins {
+            assert!([2.0, 20.0, 40.0, 52.0].contains(&b[0]), "{b:?}");
+            assert_eq!((b[2] - b[0], b[1], b[3]), (6.0, 5.0, 15.0));
+        }
+        // Spread out: the second is the window farthest from the first.
+        let d = (wins[0][0] - wins[1][0]).abs();
+        assert!(d >= 32.0, "{wins:?}");
+        assert_eq!(t.classes[&Class::Wall].len(), 3);
+        // Asking for more windows than there are gives them all.
+        let all = simulate_window_user(&truth, w, h, 9, 3, 3, 5).unwrap();
+        assert_eq!(all.classes[&Class::Window].len(), 4);
     }
 }

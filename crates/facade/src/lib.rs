@@ -12,6 +12,8 @@
 //!   [`model::FacadeModel`] (FACADE.json) and its label image.
 //! - [`search`] (§3.1.7): [`search::parse`] finds façade boundaries, floors and windows
 //!   maximising the merit function.
+//! - [`repeat`]: windows proposed as repeats of one whole window the user drew (normalised
+//!   cross-correlation, non-maximum suppression, grid columns and rows).
 //! - [`draw`]: the label overlay figure (background red, wall magenta, window green).
 //!
 //! ```
@@ -50,6 +52,7 @@ pub mod eval;
 pub mod gothic;
 pub mod model;
 pub mod rectify;
+pub mod repeat;
 pub mod search;
 
 pub use error::{FacadeError, Result};

@@ -134,3 +134,74 @@ fn odd_shapes_give_results_or_errors_never_panics() {
         }
     }
 }
+
+/// A façade whose ground floor is a shop (two wide windows in their own columns) and whose
+/// second floor lacks one window, with a ±1 log-likelihood map from its layout: the default
+/// grammar (`Grammar::Columns`) parses it exactly; the text's grid cannot.
+#[test]
+fn shop_floor_and_missing_window_are_parsed_exactly() {
+    use facade::classify::LogLikelihoods;
+    use facade::search::Grammar;
+    let (w, h) = (200usize, 200usize);
+    // Floors (top to bottom): 0..40, 40..80, 80..120, 120..160 with windows 20 wide at x = 20,
+    // 60, 100, 140 (rows +10..+30), the second floor without the one at x = 100; shop floor
+    // 160..200 with windows x 15..85 and 115..185, rows 165..195.
+    let mut wins: Vec<[usize; 4]> = Vec::new();
+    for (f, y0) in [0usize, 40, 80, 120].iter().enumerate() {
+        for x0 in [20usize, 60, 100, 140] {
+            if !(f == 1 && x0 == 100) {
+                wins.push([x0, y0 + 10, x0 + 20, y0 + 30]);
+            }
+        }
+    }
+    wins.push([15, 165, 85, 195]);
+    wins.push([115, 165, 185, 195]);
+    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([190, 150, 120]));
+    let mut truth = vec![1u8; w * h];
+    for r in &wins {
+        for y in r[1]..r[3] {
+            for x in r[0]..r[2] {
+                img.put_pixel(x as u32, y as u32, image::Rgb([40, 50, 70]));
+                truth[y * w + x] = 2;
+            }
+        }
+    }
+    let ll = LogLikelihoods {
+        width: w,
+        height: h,
+        maps: [
+            None,
+            Some(
+                truth
+                    .iter()
+                    .map(|&t| if t == 1 { 0.0 } else { -1.0 })
+                    .collect(),
+            ),
+            Some(
+                truth
+                    .iter()
+                    .map(|&t| if t == 2 { 0.0 } else { -1.0 })
+                    .collect(),
+            ),
+        ],
+    };
+    let model = parse(&img, &ll, &SearchParams::default()).unwrap();
+    assert_eq!(model.facades.len(), 1);
+    let f = &model.facades[0];
+    let per_floor: Vec<usize> = f.floors.iter().map(|fl| fl.windows.len()).collect();
+    assert_eq!(per_floor, vec![4, 3, 4, 4, 2], "{f:?}");
+    let wrong = model
+        .labels()
+        .iter()
+        .zip(&truth)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(wrong, 0, "{f:?}");
+    assert_eq!((f.params.n_l, f.params.n_w), (5, 4));
+    assert_eq!((f.params.w_w, f.params.w_gap), (20.0, 20.0));
+    // The text's grammar: one set of equal columns in every floor, every cell a window.
+    let text = parse(&img, &ll, &SearchParams::text()).unwrap();
+    assert_eq!(SearchParams::text().grammar, Grammar::Text);
+    let acc = pixel_accuracy(&text.labels(), &truth);
+    assert!(acc < 1.0, "{acc}");
+}

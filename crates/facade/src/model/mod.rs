@@ -9,6 +9,9 @@ use crate::classify::{Class, LogLikelihoods};
 /// Most floors per façade and windows per floor (§3.1.6).
 pub const MAX_FLOORS: u32 = 10;
 pub const MAX_WINDOWS: u32 = 10;
+/// Most window columns per floor kind under `search::Grammar::Columns` (a departure from
+/// §3.1.6's N_w ≤ 10: wide CMP façades have more).
+pub const MAX_COLUMNS: u32 = 40;
 
 /// Ω of §3.1.6, in pixels of the image parsed (x right, y down). Floors are counted from the
 /// ground: floor 1 (height `h_1`) at the bottom, floor N_L (height `h_nl`) at the top, the

@@ -24,13 +24,16 @@ pub fn facade_boundaries(
         .map(|((&a, &b), &c)| {
             let (a, b) = (a as f64, b as f64);
             let m = a.max(b);
-            m + ((a - m).exp() + (b - m).exp()).ln() - std::f64::consts::LN_2 - c as f64
+            let r = m + ((a - m).exp() + (b - m).exp()).ln() - std::f64::consts::LN_2 - c as f64;
+            // Departure (issue 21): clipped like the window − wall ratio.
+            r.clamp(-p.clip, p.clip)
         })
         .collect();
     let di = Integral::new(&d, w, h);
     let xs = grads.x_peaks([0, 0, w, h], p);
     let ys = grads.y_peaks([0, 0, w, h], p);
     let s = xs.len() - 1;
+    let penalty = p.facade_penalty * (w * h) as f64;
     // best_run[i][j]: the best (gain, top, bottom) of one façade spanning strips i..j.
     let best_run = |i: usize, j: usize| -> (f64, usize, usize) {
         let (x0, x1) = (xs[i], xs[j]);
@@ -54,6 +57,10 @@ pub fn facade_boundaries(
         back[j] = None;
         for i in 0..j {
             let (g, t, b) = best_run(i, j);
+            // Departure (issue 21): each façade costs `facade_penalty` × the image's area, so
+            // that a few background-like pixels (a dormer's roof, a pilaster) do not split one
+            // building into strips of one window column each. 0 in the text.
+            let g = g - penalty;
             if g > 0.0 && score[i] + g > score[j] {
                 score[j] = score[i] + g;
                 back[j] = Some((i, t, b));

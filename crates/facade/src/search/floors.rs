@@ -7,7 +7,7 @@
 use crate::model::{FacadeParams, MAX_FLOORS, MAX_WINDOWS};
 
 /// Smallest floor height, window width and window gap considered (pixels).
-const MIN_SIZE: usize = 3;
+pub(super) const MIN_SIZE: usize = 3;
 
 /// Best contiguous band [t, b) of a profile with positive sum (Kadane); `None` if none is.
 fn best_band(prof: &[f64]) -> Option<(f64, usize, usize)> {
@@ -89,6 +89,15 @@ fn floor_band(rows: &[f64], f0: usize, f1: usize) -> (f64, (usize, usize)) {
 /// Exhaustive search of the vertical parameters given the row profile (window-minus-wall
 /// log-likelihood summed over the current window columns). `cands` are relative split rows.
 pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
+    search_vertical_kinds([rows, rows, rows], cands)
+}
+
+/// [`search_vertical`] with one row profile per floor kind — ground, middle, top — each summed
+/// over that kind's own window columns (the per-kind columns of `Grammar::Columns`; the text's
+/// grammar passes one profile three times).
+pub(super) fn search_vertical_kinds(profiles: [&[f64]; 3], cands: &[usize]) -> Vertical {
+    let [ground_rows, middle_rows, top_rows] = profiles;
+    let rows = middle_rows;
     let fh = rows.len();
     let mut best = Vertical {
         merit: f64::NEG_INFINITY,
@@ -107,7 +116,7 @@ pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
         }
     };
     // One floor.
-    let (m, g) = floor_band(rows, 0, fh);
+    let (m, g) = floor_band(ground_rows, 0, fh);
     consider(Vertical {
         merit: m,
         n_l: 1,
@@ -120,8 +129,8 @@ pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
             continue;
         }
         // Two floors split at c.
-        let (mt, t) = floor_band(rows, 0, c);
-        let (mg, g) = floor_band(rows, c, fh);
+        let (mt, t) = floor_band(top_rows, 0, c);
+        let (mg, g) = floor_band(ground_rows, c, fh);
         consider(Vertical {
             merit: mt + mg,
             n_l: 2,
@@ -137,12 +146,12 @@ pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
         if a < MIN_SIZE {
             continue;
         }
-        let (mt, t) = floor_band(rows, 0, a);
+        let (mt, t) = floor_band(top_rows, 0, a);
         for &b in &cands[i + 1..] {
             if b + MIN_SIZE > fh {
                 continue;
             }
-            let (mg, g) = floor_band(rows, b, fh);
+            let (mg, g) = floor_band(ground_rows, b, fh);
             let span = b - a;
             for mid in 1..=(MAX_FLOORS as usize - 2) {
                 let hm = span as f64 / mid as f64;

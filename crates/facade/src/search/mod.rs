@@ -3,6 +3,7 @@
 //! (window vs wall, exhaustive search over gradient peaks). [`parse`] runs both.
 
 pub mod boundary;
+pub mod columns;
 pub mod floors;
 mod gradients;
 pub mod joint;
@@ -11,7 +12,7 @@ mod params;
 use image::RgbImage;
 
 pub use gradients::{Gradients, Integral, peaks};
-pub use params::SearchParams;
+pub use params::{Grammar, SearchParams};
 
 use crate::classify::{Class, LogLikelihoods};
 use crate::error::{FacadeError, Result};
@@ -36,11 +37,19 @@ pub fn parse(img: &RgbImage, ll: &LogLikelihoods, p: &SearchParams) -> Result<Fa
         Some(bg) => boundary::facade_boundaries(win, wall, bg, w, h, &grads, p),
         None => vec![[0, 0, w, h]],
     };
-    let d: Vec<f64> = win.iter().zip(wall).map(|(a, b)| (a - b) as f64).collect();
+    // Departure (issue 21): the ratio clipped to [−clip, clip]; the text's search sums it whole.
+    let d: Vec<f64> = win
+        .iter()
+        .zip(wall)
+        .map(|(a, b)| ((a - b) as f64 - p.window_bias).clamp(-p.clip, p.clip))
+        .collect();
     let di = Integral::new(&d, w, h);
     let facades = rects
         .iter()
-        .map(|r| joint::fit_floors(*r, &di, &grads, p).to_facade())
+        .map(|r| match p.grammar {
+            Grammar::Text => joint::fit_floors(*r, &di, &grads, p).to_facade(),
+            Grammar::Columns => columns::fit_columns(*r, &di, &grads, p),
+        })
         .collect();
     let mut model = FacadeModel {
         width: w as u32,
