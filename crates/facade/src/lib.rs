@@ -5,9 +5,11 @@
 //!   from Prewitt/Hough edge segments by RANSAC and returns a [`rectify::Rectification`] (the
 //!   homography H, output size, line families); [`rectify::rectify_with_lines`] takes user
 //!   segments ([`rectify::ManualLines`], LINES.json) instead.
-//! - [`classify`] (§3.1.2–3.1.4): a [`classify::Training`] (TRAINING.json boxes) and 18-D
-//!   [`classify::Features`] train one [`classify::Gmm`] per [`classify::Class`]; the result is the
-//!   per-pixel [`classify::LogLikelihoods`].
+//! - [`classify`] (§3.1.2–3.1.4): a [`classify::Training`] (TRAINING.json boxes) trains the
+//!   per-pixel classifier chosen by [`classify::Method`] — by default (departure, issue 21) the
+//!   `pixelclass` filter bank and random forest, or the text's 18-D [`classify::Features`] with
+//!   one [`classify::Gmm`] per [`classify::Class`]; the result is the per-pixel
+//!   [`classify::LogLikelihoods`].
 //! - [`model`] (§3.1.5–3.1.6): [`model::FacadeParams`] (the 18 parameters), [`model::Facade`],
 //!   [`model::FacadeModel`] (FACADE.json) and its label image.
 //! - [`search`] (§3.1.7): [`search::parse`] finds façade boundaries, floors and windows

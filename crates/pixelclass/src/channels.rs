@@ -81,7 +81,8 @@ impl Channels {
         }
     }
 
-    /// Plain RGB in [0, 1], for comparison with CIELAB.
+    /// Plain RGB in [0, 1]: measured against CIELAB in docs/pixelclass.md (much worse on the
+    /// façade sets), kept for that comparison and for inputs already in RGB terms.
     pub fn from_rgb_linear_scale(img: &RgbImage) -> Channels {
         let (w, h) = (img.width() as usize, img.height() as usize);
         let planes = (0..3)

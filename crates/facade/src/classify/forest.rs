@@ -7,11 +7,10 @@
 //! forest's probabilities are handed on as ln p, floored at [`P_FLOOR`].
 
 use image::RgbImage;
-use pixelclass::{Channels, Sample};
+use pixelclass::{Channels, Params, Sample};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::{Class, ClassifyParams, LogLikelihoods, PixelBox};
 use crate::error::{FacadeError, Result};
 
 /// Probabilities below this count as this: the search compares window and wall by their log
@@ -19,21 +18,23 @@ use crate::error::{FacadeError, Result};
 /// nats keeps one pixel's say bounded, about as much as the clipped GMM ratios had.
 pub const P_FLOOR: f32 = 1e-3;
 
-/// Per-pixel ln p of each class with boxes, from a forest trained on up to
-/// `samples_per_box` seeded pixels of every box.
-pub fn log_likelihoods(
+/// Per-pixel ln p (row-major) of each class given by its boxes (`[x0, y0, x1, y1]`, exclusive
+/// ends, inside the image), in the order given, from a forest trained on up to
+/// `samples_per_box` pixels of every box, drawn with `seed` (which also seeds the trees).
+pub fn log_probabilities(
     img: &RgbImage,
-    boxes: &std::collections::BTreeMap<Class, Vec<PixelBox>>,
-    p: &ClassifyParams,
-) -> Result<LogLikelihoods> {
-    let present: Vec<Class> = boxes.keys().copied().collect();
-    let mut rng = ChaCha8Rng::seed_from_u64(p.features.seed ^ 0xf0_7e57);
+    classes: &[&[[usize; 4]]],
+    samples_per_box: usize,
+    seed: u64,
+    params: &Params,
+) -> Result<Vec<Vec<f32>>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0xf0_7e57);
     let mut samples = Vec::new();
-    for (index, class) in present.iter().enumerate() {
-        for b in &boxes[class] {
+    for (index, boxes) in classes.iter().enumerate() {
+        for b in *boxes {
             let bw = b[2] - b[0];
             let n = bw * (b[3] - b[1]);
-            let take = n.min(p.samples_per_box);
+            let take = n.min(samples_per_box);
             for s in 0..take {
                 let k = if take == n { s } else { rng.random_range(0..n) };
                 samples.push(Sample {
@@ -44,22 +45,16 @@ pub fn log_likelihoods(
             }
         }
     }
-    let mut params = p.pixel.clone();
-    params.forest.seed = p.features.seed;
-    let prob = pixelclass::classify(&Channels::from_rgb(img), &samples, present.len(), &params)
+    let mut params = params.clone();
+    params.forest.seed = seed;
+    let prob = pixelclass::classify(&Channels::from_rgb(img), &samples, classes.len(), &params)
         .map_err(|e| FacadeError::BadTraining(e.to_string()))?;
-    let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
-    for (index, class) in present.iter().enumerate() {
-        maps[*class as usize] = Some(
-            prob.class_map(index)
+    Ok((0..classes.len())
+        .map(|c| {
+            prob.class_map(c)
                 .into_iter()
                 .map(|v| v.max(P_FLOOR).ln())
-                .collect(),
-        );
-    }
-    Ok(LogLikelihoods {
-        width: prob.width,
-        height: prob.height,
-        maps,
-    })
+                .collect()
+        })
+        .collect())
 }

@@ -339,7 +339,25 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
     }
     let boxes = training.boxes(w as usize, h as usize)?;
     if p.method == Method::Forest {
-        return forest::log_likelihoods(img, &boxes, p);
+        // Departure (§3.1.3–3.1.4, issue 21): the forest's ln p stand for ln P_kj.
+        let present: Vec<(&Class, &Vec<PixelBox>)> = boxes.iter().collect();
+        let per_class: Vec<&[PixelBox]> = present.iter().map(|(_, b)| b.as_slice()).collect();
+        let logs = forest::log_probabilities(
+            img,
+            &per_class,
+            p.samples_per_box,
+            p.features.seed,
+            &p.pixel,
+        )?;
+        let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
+        for ((class, _), m) in present.into_iter().zip(logs) {
+            maps[*class as usize] = Some(m);
+        }
+        return Ok(LogLikelihoods {
+            width: w as usize,
+            height: h as usize,
+            maps,
+        });
     }
     let f = features::compute(img, &p.features);
     let c = Classifier::train(&f, training, p)?;
