@@ -87,6 +87,7 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
     for expected in [
         "overlays/plan_labels.png",
         "overlays/keep_south_near_lines.png",
+        "overlays/keep_south_near_pixels.png",
         "overlays/keep_south_near_facade.png",
         "overlays/keep_south_near_labels.png",
         "overlays/keep_south_far_facade.png",
@@ -112,6 +113,11 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
             }
             Some(_) => {}
             None => assert!(o.name.ends_with("_labels.png"), "{}", o.name),
+        }
+        // The colour overlays of the façade stage say which colour is which class.
+        if o.name.ends_with("_pixels.png") || o.name.ends_with("_facade.png") {
+            let c = o.caption.as_deref().unwrap_or_default();
+            assert!(c.contains(facade::draw::LEGEND), "{c}");
         }
     }
     assert_eq!(
