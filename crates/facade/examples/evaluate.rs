@@ -1,4 +1,5 @@
-//! Accuracy on CMP base and Paris Art-deco (../shared/data, or the folder in FACADE_DATA): a
+//! Accuracy on CMP base, Paris Art-deco and LabelMeFacade (oblique photos, rectified first by
+//! §3.1.1 with their labels) (../shared/data, or the folder in FACADE_DATA): a
 //! simulated user draws training boxes inside the ground truth; we report pixel accuracy and
 //! window IoU of the per-pixel map alone and of the fitted façade tree, and the time per image.
 //!
@@ -59,6 +60,67 @@ fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
             })
             .collect(),
     )
+}
+
+/// LabelMeFacade colours (RGB PNG, PROVENANCE.md): window 0:0:128 → window; building 128:0:0
+/// and door 128:128:0 → wall; sky, road, pavement, vegetation and car → background; "various"
+/// 0:0:0 and anything else is ignored.
+fn labelme_truth(path: &Path) -> Option<Vec<u8>> {
+    let img = image::open(path).ok()?.to_rgb8();
+    Some(
+        img.pixels()
+            .map(|p| match p.0 {
+                [0, 0, 128] => 2,
+                [128, 0, 0] | [128, 128, 0] => 1,
+                [0, 128, 128] | [128, 64, 0] | [128, 128, 128] | [0, 128, 0] | [128, 0, 128] => 0,
+                _ => IGNORE,
+            })
+            .collect(),
+    )
+}
+
+/// A LabelMeFacade photo (oblique) and its labels through the automatic rectification of
+/// §3.1.1, as `castellan reconstruct` rectifies a photo: the photo warped bilinearly and
+/// written to `dir` (for `run`), the labels carried nearest-neighbour, pixels from outside the
+/// photo ignored.
+fn rectified_labelme(
+    photo: &Path,
+    labels: &Path,
+    dir: &Path,
+) -> Result<(PathBuf, Vec<u8>), String> {
+    let img = image::open(photo).map_err(|e| e.to_string())?.to_rgb8();
+    let truth = labelme_truth(labels).ok_or("unreadable labels")?;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    if truth.len() != w * h {
+        return Err("labels and photo differ in size".into());
+    }
+    let r = facade::rectify::rectify(&img, &facade::rectify::RectifyParams::default())
+        .map_err(|e| e.to_string())?;
+    let warped = r.warp(&img).map_err(|e| e.to_string())?;
+    let back = r.h.try_inverse().ok_or("singular homography")?;
+    let (rw, rh) = (r.width as usize, r.height as usize);
+    let mut out = vec![IGNORE; rw * rh];
+    for y in 0..rh {
+        for x in 0..rw {
+            let Some((u, v)) = facade::rectify::apply(&back, x as f64, y as f64) else {
+                continue;
+            };
+            let (u, v) = (u.round(), v.round());
+            // Black in the warp: beyond the photo or past its vanishing line.
+            if u >= 0.0
+                && v >= 0.0
+                && u < w as f64
+                && v < h as f64
+                && warped.get_pixel(x as u32, y as u32).0 != [0, 0, 0]
+            {
+                out[y * rw + x] = truth[v as usize * w + u as usize];
+            }
+        }
+    }
+    let stem = photo.file_stem().unwrap_or_default().to_string_lossy();
+    let path = dir.join(format!("{stem}.png"));
+    warped.save(&path).map_err(|e| e.to_string())?;
+    Ok((path, out))
 }
 
 fn env_usize(name: &str, default: usize) -> usize {
@@ -485,4 +547,25 @@ fn main() {
         }
     }
     run("Paris Art-deco", art);
+    let lm = d.join("labelmefacade");
+    let dir = std::env::temp_dir().join(format!("castellan-labelme-{}", std::process::id()));
+    let mut photos: Vec<PathBuf> = std::fs::read_dir(lm.join("images"))
+        .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    photos.sort();
+    if !photos.is_empty() && std::fs::create_dir_all(&dir).is_ok() {
+        let mut items = Vec::new();
+        for p in photos.iter().take(max) {
+            let labels = lm
+                .join("labels")
+                .join(p.file_name().unwrap_or_default())
+                .with_extension("png");
+            match rectified_labelme(p, &labels, &dir) {
+                Ok(item) => items.push(item),
+                Err(e) => eprintln!("{}: not rectified ({e}), left out", p.display()),
+            }
+        }
+        run("LabelMeFacade (rectified)", items);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
