@@ -253,6 +253,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
         bbox: None,
         metres_per_pixel: None,
         seed: 7,
+        classifier: Default::default(),
     })
     .unwrap();
     let b = plan.bulge_towers[1];
