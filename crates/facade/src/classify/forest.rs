@@ -5,13 +5,13 @@
 //! density model of that space. On the real façade sets it gives far better per-pixel maps
 //! (docs/pixelclass.md). The search and the Gothic class map read log-likelihoods, so the
 //! forest's probabilities are handed on as ln p, floored at [`P_FLOOR`].
+//!
+//! Which pixels of the boxes train it is decided by the caller (`classify::training_samples`);
+//! this file only trains and applies the forest.
 
 use image::RgbImage;
 use pixelclass::{Channels, Sample};
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 
-use super::{Class, ClassifyParams, LogLikelihoods, PixelBox};
 use crate::error::{FacadeError, Result};
 
 /// Probabilities below this count as this: the search compares window and wall by their log
@@ -19,47 +19,25 @@ use crate::error::{FacadeError, Result};
 /// nats keeps one pixel's say bounded, about as much as the clipped GMM ratios had.
 pub const P_FLOOR: f32 = 1e-3;
 
-/// Per-pixel ln p of each class with boxes, from a forest trained on up to
-/// `samples_per_box` seeded pixels of every box.
-pub fn log_likelihoods(
+/// Per-pixel ln p of each of `classes` classes (indices of the samples' `class`), row-major,
+/// from a forest trained on `samples`; `params.forest.seed` is replaced by `seed`.
+pub fn log_maps(
     img: &RgbImage,
-    boxes: &std::collections::BTreeMap<Class, Vec<PixelBox>>,
-    p: &ClassifyParams,
-) -> Result<LogLikelihoods> {
-    let present: Vec<Class> = boxes.keys().copied().collect();
-    let mut rng = ChaCha8Rng::seed_from_u64(p.features.seed ^ 0xf0_7e57);
-    let mut samples = Vec::new();
-    for (index, class) in present.iter().enumerate() {
-        for b in &boxes[class] {
-            let bw = b[2] - b[0];
-            let n = bw * (b[3] - b[1]);
-            let take = n.min(p.samples_per_box);
-            for s in 0..take {
-                let k = if take == n { s } else { rng.random_range(0..n) };
-                samples.push(Sample {
-                    x: b[0] + k % bw,
-                    y: b[1] + k / bw,
-                    class: index,
-                });
-            }
-        }
-    }
-    let mut params = p.pixel.clone();
-    params.forest.seed = p.features.seed;
-    let prob = pixelclass::classify(&Channels::from_rgb(img), &samples, present.len(), &params)
+    samples: &[Sample],
+    classes: usize,
+    params: &pixelclass::Params,
+    seed: u64,
+) -> Result<Vec<Vec<f32>>> {
+    let mut params = params.clone();
+    params.forest.seed = seed;
+    let prob = pixelclass::classify(&Channels::from_rgb(img), samples, classes, &params)
         .map_err(|e| FacadeError::BadTraining(e.to_string()))?;
-    let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
-    for (index, class) in present.iter().enumerate() {
-        maps[*class as usize] = Some(
+    Ok((0..classes)
+        .map(|index| {
             prob.class_map(index)
                 .into_iter()
                 .map(|v| v.max(P_FLOOR).ln())
-                .collect(),
-        );
-    }
-    Ok(LogLikelihoods {
-        width: prob.width,
-        height: prob.height,
-        maps,
-    })
+                .collect()
+        })
+        .collect())
 }
