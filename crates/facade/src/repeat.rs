@@ -422,3 +422,30 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod evidence_tests {
+    use super::*;
+
+    #[test]
+    fn evidence_raises_window_inside_proposals_only() {
+        let mut ll = LogLikelihoods {
+            width: 10,
+            height: 6,
+            maps: [None, Some(vec![-1.0; 60]), Some(vec![-2.0; 60])],
+        };
+        let r = Repeats {
+            windows: vec![[1.0, 1.0, 3.0, 4.0], [8.0, 4.0, 12.0, 9.0]],
+            scores: vec![1.0, 0.8],
+            columns: vec![2.0, 10.0],
+            rows: vec![2.5, 6.5],
+        };
+        evidence(&mut ll, &r, 2.0);
+        let win = ll.get(Class::Window).unwrap();
+        let raised: usize = win.iter().filter(|v| **v == 0.0).count();
+        assert_eq!(raised, 2 * 3 + 2 * 2);
+        assert_eq!(win[10 + 1], 0.0);
+        assert_eq!(win[0], -2.0);
+        assert_eq!(ll.get(Class::Wall).unwrap(), &[-1.0; 60][..]);
+    }
+}

@@ -628,6 +628,30 @@ mod tests {
     }
 
     #[test]
+    fn whole_window_boxes_train_wall_on_their_ring() {
+        let mut boxes = BTreeMap::new();
+        boxes.insert(Class::Window, vec![[20, 20, 40, 50], [60, 5, 66, 11]]);
+        boxes.insert(Class::Wall, vec![[0, 0, 9, 9]]);
+        let p = ClassifyParams::default();
+        let g = training_samples(&boxes, &p, 100, 80, 1);
+        // Three drawn boxes, one ring (the 6-px window box is a patch of glass, no ring).
+        assert_eq!(g.len(), 4);
+        let (class, ring) = &g[3];
+        assert_eq!(*class, Class::Wall);
+        assert_eq!(ring.len(), p.samples_per_box);
+        for &(x, y) in ring {
+            assert!((18..42).contains(&x) && (17..53).contains(&y), "{x} {y}");
+            assert!(!((20..40).contains(&x) && (20..50).contains(&y)), "{x} {y}");
+        }
+        // Without the ring the drawn boxes alone, sampled as drawn.
+        let off = ClassifyParams {
+            window_ring: 0.0,
+            ..p
+        };
+        assert_eq!(training_samples(&boxes, &off, 100, 80, 1).len(), 3);
+    }
+
+    #[test]
     fn single_colour_image_is_an_error() {
         let img = RgbImage::from_pixel(20, 20, Rgb([9, 9, 9]));
         let t = training(&[
