@@ -9,7 +9,9 @@
 //! - FACADE_USER=boxes|windows: three s × s boxes per class (default), or whole-window boxes
 //!   (up to three ground-truth window components) with s × s boxes for wall and background.
 //! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS,
-//!   FACADE_CLASSIFIER (gmm or forest, default forest).
+//!   FACADE_CLASSIFIER (gmm or forest, default forest); FACADE_WHOLE_SIDE, FACADE_INNER,
+//!   FACADE_RING: how whole-window boxes are sampled (`ClassifyParams::whole_window_side`,
+//!   `window_inner`, `window_ring`).
 //! - FACADE_MAP=model|oracle: the classifier's map (default), or an experiment map made from
 //!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
 //!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
@@ -17,18 +19,19 @@
 //! - FACADE_GRAMMAR=text|columns: the search's grammar (`facade::search::Grammar`; default
 //!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
 //!   FACADE_COLUMN_COST, FACADE_WINDOW_BIAS, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
-//! - FACADE_REPEAT=0|1: propose the other windows from whole-window boxes (`facade::repeat`,
-//!   acceptance FACADE_REPEAT_THRESHOLD) and add the strongest FACADE_REPEAT_MAX (default 6)
-//!   to the window boxes; prints the proposals' precision and recall.
+//! - FACADE_REPEAT=0|1: the repeat step of `facade::parse_photo` (proposals from whole-window
+//!   boxes added to the window evidence, weight FACADE_REPEAT_WEIGHT, acceptance
+//!   FACADE_REPEAT_THRESHOLD); prints the proposals' precision and recall.
 //! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
 //! - FACADE_DUMP=dir: truth, map and tree label images per photo.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training, classify};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training};
 use facade::eval::{IGNORE, class_iou, pixel_accuracy, simulate_user_inside, simulate_window_user};
-use facade::repeat::{RepeatParams, find_repeats};
+use facade::parse_photo;
+use facade::repeat::{RepeatParams, Repeats};
 use facade::search::{SearchParams, parse};
 
 use rand::{RngExt, SeedableRng};
@@ -155,6 +158,9 @@ fn classify_params() -> ClassifyParams {
     {
         p.features.components = k;
     }
+    p.whole_window_side = env_usize("FACADE_WHOLE_SIDE", p.whole_window_side);
+    p.window_inner = env_f64("FACADE_INNER", p.window_inner);
+    p.window_ring = env_f64("FACADE_RING", p.window_ring);
     p
 }
 
@@ -254,40 +260,44 @@ fn user(truth: &[u8], w: usize, h: usize) -> Option<Training> {
     simulate_user_inside(truth, w, h, 3, side, env_usize("FACADE_MARGIN", 0), 1).ok()
 }
 
-/// FACADE_REPEAT: the user's whole windows' repeats, the strongest FACADE_REPEAT_MAX (default
-/// 6) added to the window boxes. Returns (proposals, of which match a true window).
-fn add_repeats(
-    img: &image::RgbImage,
+/// FACADE_REPEAT=0|1 (default: the library's, on when `RepeatParams::evidence` > 0): the
+/// repeat step of `facade::parse_photo`, with weight FACADE_REPEAT_WEIGHT (default the
+/// library's, or 1 when that is 0) and acceptance FACADE_REPEAT_THRESHOLD.
+fn repeat_params() -> RepeatParams {
+    let d = RepeatParams::default();
+    let on = env_str("FACADE_REPEAT", if d.evidence > 0.0 { "1" } else { "0" }) == "1";
+    let weight = if d.evidence > 0.0 { d.evidence } else { 1.0 };
+    RepeatParams {
+        threshold: env_f64("FACADE_REPEAT_THRESHOLD", d.threshold),
+        evidence: if on {
+            env_f64("FACADE_REPEAT_WEIGHT", weight)
+        } else {
+            0.0
+        },
+        ..d
+    }
+}
+
+/// The repeats beyond the user's boxes, and how many match a true window (IoU > 0.5), and
+/// the true windows.
+fn repeat_stats(
+    r: &Repeats,
+    user: &Training,
     truth: &[u8],
-    training: &mut Training,
+    w: usize,
+    h: usize,
 ) -> (usize, usize, usize) {
-    let Some(wins) = training.classes.get(&Class::Window).cloned() else {
-        return (0, 0, 0);
-    };
-    let p = RepeatParams {
-        threshold: env_f64("FACADE_REPEAT_THRESHOLD", RepeatParams::default().threshold),
-        ..Default::default()
-    };
-    let r = find_repeats(img, &wins, &p);
-    let (w, h) = (img.width() as usize, img.height() as usize);
+    let wins = user
+        .classes
+        .get(&Class::Window)
+        .cloned()
+        .unwrap_or_default();
     let comps = raster_boxes(truth, w, h);
-    let new: Vec<([f64; 4], f64)> = r
-        .windows
-        .iter()
-        .zip(&r.scores)
-        .filter(|(b, _)| !wins.contains(b))
-        .map(|(b, s)| (*b, *s))
-        .collect();
+    let new: Vec<&[f64; 4]> = r.windows.iter().filter(|b| !wins.contains(b)).collect();
     let good = new
         .iter()
-        .filter(|(b, _)| comps.iter().any(|c| box_iou(b, c) > 0.5))
+        .filter(|b| comps.iter().any(|c| box_iou(b, c) > 0.5))
         .count();
-    let mut best = new.clone();
-    best.sort_by(|a, b| b.1.total_cmp(&a.1));
-    best.truncate(env_usize("FACADE_REPEAT_MAX", 6));
-    if let Some(v) = training.classes.get_mut(&Class::Window) {
-        v.extend(best.iter().map(|b| b.0));
-    }
     (new.len(), good, comps.len())
 }
 
@@ -391,28 +401,37 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             eprintln!("{}: label size mismatch, skipped", img_path.display());
             continue;
         }
-        let Some(mut training) = user(&truth, w, h) else {
+        let Some(training) = user(&truth, w, h) else {
             continue;
         };
         let t = Instant::now();
-        if env_str("FACADE_REPEAT", "0") == "1" {
-            let (n, good, truth_n) = add_repeats(&img, &truth, &mut training);
-            s.proposals += n;
-            s.good += good;
-            s.true_windows += truth_n;
-        }
-        let ll = if use_oracle {
-            oracle(&truth, w, h, i as u64 + 1)
+        let (ll, model) = if use_oracle {
+            let ll = oracle(&truth, w, h, i as u64 + 1);
+            let model = parse(&img, &ll, &search_params()).unwrap();
+            (ll, model)
         } else {
-            match classify(&img, &training, &classify_params()) {
-                Ok(ll) => ll,
+            match parse_photo(
+                &img,
+                &training,
+                &classify_params(),
+                &search_params(),
+                &repeat_params(),
+            ) {
+                Ok((ll, model, repeats)) => {
+                    if let Some(r) = repeats {
+                        let (n, good, truth_n) = repeat_stats(&r, &training, &truth, w, h);
+                        s.proposals += n;
+                        s.good += good;
+                        s.true_windows += truth_n;
+                    }
+                    (ll, model)
+                }
                 Err(e) => {
                     eprintln!("{}: {e}", img_path.display());
                     continue;
                 }
             }
         };
-        let model = parse(&img, &ll, &search_params()).unwrap();
         s.secs += t.elapsed().as_secs_f64();
         let map: Vec<u8> = ll.initial_labels().iter().map(|c| *c as u8).collect();
         let pred = model.labels();
@@ -479,7 +498,7 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.iou / n,
         s.secs / n
     );
-    if s.proposals > 0 || env_str("FACADE_REPEAT", "0") == "1" {
+    if s.proposals > 0 || repeat_params().evidence > 0.0 {
         eprintln!(
             "{name}: repeats proposed {} (beyond the user's), {} match a true window (IoU > 0.5): precision {:.3}, recall {:.3} of {} true windows",
             s.proposals,

@@ -16,6 +16,8 @@
 //!   maximising the merit function.
 //! - [`repeat`]: windows proposed as repeats of one whole window the user drew (normalised
 //!   cross-correlation, non-maximum suppression, grid columns and rows).
+//! - [`parse_photo`] ([`pipeline`]): classify → repeats → search in one call, the steps the
+//!   binaries share.
 //! - [`draw`]: the label overlay figure (background red, wall magenta, window green).
 //!
 //! ```
@@ -53,8 +55,10 @@ pub mod error;
 pub mod eval;
 pub mod gothic;
 pub mod model;
+pub mod pipeline;
 pub mod rectify;
 pub mod repeat;
 pub mod search;
 
 pub use error::{FacadeError, Result};
+pub use pipeline::parse_photo;

@@ -13,6 +13,8 @@
 
 use image::RgbImage;
 
+use crate::classify::{Class, LogLikelihoods};
+
 /// Settings of [`find_repeats`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RepeatParams {
@@ -29,6 +31,9 @@ pub struct RepeatParams {
     /// frame and the wall around it carry most of its pattern; a uniform pane alone matches
     /// nothing); proposals are shrunk back to the box's size.
     pub context: f64,
+    /// [`evidence`]'s weight in [`crate::parse_photo`]: nats added to the window class's
+    /// ln p inside every proposal before the search. 0: the repeat step is skipped.
+    pub evidence: f64,
 }
 
 impl Default for RepeatParams {
@@ -39,7 +44,36 @@ impl Default for RepeatParams {
             max_overlap: 0.2,
             max_proposals: 200,
             context: 0.15,
+            evidence: REPEAT_EVIDENCE,
         }
+    }
+}
+
+/// Default of [`RepeatParams::evidence`] (measured in docs/facade.md).
+pub const REPEAT_EVIDENCE: f64 = 2.0;
+
+/// Repeats as evidence for the search (issue 21): `weight` nats added to the window class's
+/// ln p at every pixel inside a proposal (the user's own boxes included), so the search's
+/// window − wall ratio rises there. A class map that is missing is left alone.
+pub fn evidence(ll: &mut LogLikelihoods, r: &Repeats, weight: f64) {
+    let (w, h) = (ll.width, ll.height);
+    let Some(win) = ll.maps[Class::Window as usize].as_mut() else {
+        return;
+    };
+    let mut inside = vec![false; w * h];
+    for b in &r.windows {
+        let x0 = b[0].max(0.0).round() as usize;
+        let y0 = b[1].max(0.0).round() as usize;
+        let x1 = (b[2].round().max(0.0) as usize).min(w);
+        let y1 = (b[3].round().max(0.0) as usize).min(h);
+        for y in y0..y1.max(y0) {
+            for x in x0..x1.max(x0) {
+                inside[y * w + x] = true;
+            }
+        }
+    }
+    for (v, _) in win.iter_mut().zip(&inside).filter(|(_, i)| **i) {
+        *v += weight as f32;
     }
 }
 
@@ -386,5 +420,32 @@ mod tests {
             clusters(vec![10.0, 52.0, 11.0, 50.0, 90.0], 5.0),
             vec![10.5, 51.0, 90.0]
         );
+    }
+}
+
+#[cfg(test)]
+mod evidence_tests {
+    use super::*;
+
+    #[test]
+    fn evidence_raises_window_inside_proposals_only() {
+        let mut ll = LogLikelihoods {
+            width: 10,
+            height: 6,
+            maps: [None, Some(vec![-1.0; 60]), Some(vec![-2.0; 60])],
+        };
+        let r = Repeats {
+            windows: vec![[1.0, 1.0, 3.0, 4.0], [8.0, 4.0, 12.0, 9.0]],
+            scores: vec![1.0, 0.8],
+            columns: vec![2.0, 10.0],
+            rows: vec![2.5, 6.5],
+        };
+        evidence(&mut ll, &r, 2.0);
+        let win = ll.get(Class::Window).unwrap();
+        let raised: usize = win.iter().filter(|v| **v == 0.0).count();
+        assert_eq!(raised, 2 * 3 + 2 * 2);
+        assert_eq!(win[10 + 1], 0.0);
+        assert_eq!(win[0], -2.0);
+        assert_eq!(ll.get(Class::Wall).unwrap(), &[-1.0; 60][..]);
     }
 }

@@ -5,11 +5,12 @@
 //! density model of that space. On the real façade sets it gives far better per-pixel maps
 //! (docs/pixelclass.md). The search and the Gothic class map read log-likelihoods, so the
 //! forest's probabilities are handed on as ln p, floored at [`P_FLOOR`].
+//!
+//! Which pixels of the boxes train it is decided by the caller (`classify::training_samples`);
+//! this file only trains and applies the forest.
 
 use image::RgbImage;
-use pixelclass::{Channels, Params, Sample};
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+use pixelclass::{Channels, Sample};
 
 use crate::error::{FacadeError, Result};
 
@@ -18,40 +19,22 @@ use crate::error::{FacadeError, Result};
 /// nats keeps one pixel's say bounded, about as much as the clipped GMM ratios had.
 pub const P_FLOOR: f32 = 1e-3;
 
-/// Per-pixel ln p (row-major) of each class given by its boxes (`[x0, y0, x1, y1]`, exclusive
-/// ends, inside the image), in the order given, from a forest trained on up to
-/// `samples_per_box` pixels of every box, drawn with `seed` (which also seeds the trees).
-pub fn log_probabilities(
+/// Per-pixel ln p of each of `classes` classes (indices of the samples' `class`), row-major,
+/// from a forest trained on `samples`; `params.forest.seed` is replaced by `seed`.
+pub fn log_maps(
     img: &RgbImage,
-    classes: &[&[[usize; 4]]],
-    samples_per_box: usize,
+    samples: &[Sample],
+    classes: usize,
+    params: &pixelclass::Params,
     seed: u64,
-    params: &Params,
 ) -> Result<Vec<Vec<f32>>> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0xf0_7e57);
-    let mut samples = Vec::new();
-    for (index, boxes) in classes.iter().enumerate() {
-        for b in *boxes {
-            let bw = b[2] - b[0];
-            let n = bw * (b[3] - b[1]);
-            let take = n.min(samples_per_box);
-            for s in 0..take {
-                let k = if take == n { s } else { rng.random_range(0..n) };
-                samples.push(Sample {
-                    x: b[0] + k % bw,
-                    y: b[1] + k / bw,
-                    class: index,
-                });
-            }
-        }
-    }
     let mut params = params.clone();
     params.forest.seed = seed;
-    let prob = pixelclass::classify(&Channels::from_rgb(img), &samples, classes.len(), &params)
+    let prob = pixelclass::classify(&Channels::from_rgb(img), samples, classes, &params)
         .map_err(|e| FacadeError::BadTraining(e.to_string()))?;
-    Ok((0..classes.len())
-        .map(|c| {
-            prob.class_map(c)
+    Ok((0..classes)
+        .map(|index| {
+            prob.class_map(index)
                 .into_iter()
                 .map(|v| v.max(P_FLOOR).ln())
                 .collect()

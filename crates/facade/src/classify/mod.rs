@@ -134,6 +134,104 @@ impl Training {
     }
 }
 
+/// Default of [`ClassifyParams::whole_window_side`] (measured in docs/facade.md).
+pub const WHOLE_WINDOW_SIDE: usize = 16;
+/// Default of [`ClassifyParams::window_inner`].
+pub const WINDOW_INNER: f64 = 0.0;
+/// Default of [`ClassifyParams::window_ring`].
+pub const WINDOW_RING: f64 = 0.1;
+
+/// Whether a window box looks like a whole window: its shorter side is at least `side` pixels.
+pub fn is_whole_window(b: &PixelBox, side: usize) -> bool {
+    (b[2] - b[0]).min(b[3] - b[1]) >= side
+}
+
+/// The training pixels of every box, one group per box (class, points), seeded: up to
+/// `samples_per_box` pixels of each box, the boxes in class then drawing order.
+///
+/// Departure (§3.1.3, issue 21): the text's user draws boxes inside a class; a user who draws
+/// a whole window ([`is_whole_window`]) gives a box holding frame, bars, reflections and a rim
+/// of wall. Such a box is sampled from its middle only (shrunk by `window_inner` on each
+/// side), and the ring just outside it (`window_ring` wide, pixels of other window boxes
+/// excepted) is added as a wall group — the wall next to a window is the wall a window must
+/// be told from. Boxes smaller than `whole_window_side` are sampled as drawn (the text).
+pub fn training_samples(
+    boxes: &BTreeMap<Class, Vec<PixelBox>>,
+    p: &ClassifyParams,
+    width: usize,
+    height: usize,
+    seed: u64,
+) -> Vec<(Class, Vec<(usize, usize)>)> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut out = Vec::new();
+    let whole = |class: Class, b: &PixelBox| {
+        class == Class::Window && is_whole_window(b, p.whole_window_side)
+    };
+    for (&class, bs) in boxes {
+        for b in bs {
+            let b = if whole(class, b) {
+                shrink(b, p.window_inner)
+            } else {
+                *b
+            };
+            let bw = b[2] - b[0];
+            let n = bw * (b[3] - b[1]);
+            let take = n.min(p.samples_per_box);
+            let points = (0..take)
+                .map(|s| {
+                    let k = if take == n { s } else { rng.random_range(0..n) };
+                    (b[0] + k % bw, b[1] + k / bw)
+                })
+                .collect();
+            out.push((class, points));
+        }
+    }
+    if p.window_ring > 0.0 && boxes.contains_key(&Class::Wall) {
+        let wins = boxes.get(&Class::Window).map_or(&[][..], |v| &v[..]);
+        let inside = |x: usize, y: usize| {
+            wins.iter()
+                .any(|b| x >= b[0] && x < b[2] && y >= b[1] && y < b[3])
+        };
+        for b in wins.iter().filter(|b| whole(Class::Window, b)) {
+            let (gx, gy) = (
+                ((b[2] - b[0]) as f64 * p.window_ring).ceil() as usize,
+                ((b[3] - b[1]) as f64 * p.window_ring).ceil() as usize,
+            );
+            let g = [
+                b[0].saturating_sub(gx),
+                b[1].saturating_sub(gy),
+                (b[2] + gx).min(width),
+                (b[3] + gy).min(height),
+            ];
+            let gw = g[2] - g[0];
+            let n = gw * (g[3] - g[1]);
+            let mut points = Vec::new();
+            for _ in 0..4 * p.samples_per_box {
+                if points.len() == p.samples_per_box {
+                    break;
+                }
+                let k = rng.random_range(0..n);
+                let (x, y) = (g[0] + k % gw, g[1] + k / gw);
+                if !inside(x, y) {
+                    points.push((x, y));
+                }
+            }
+            if !points.is_empty() {
+                out.push((Class::Wall, points));
+            }
+        }
+    }
+    out
+}
+
+/// `b` shrunk by `frac` of its width and height on each side, at least one pixel kept.
+fn shrink(b: &PixelBox, frac: f64) -> PixelBox {
+    let (w, h) = (b[2] - b[0], b[3] - b[1]);
+    let dx = ((w as f64 * frac) as usize).min((w - 1) / 2);
+    let dy = ((h as f64 * frac) as usize).min((h - 1) / 2);
+    [b[0] + dx, b[1] + dy, b[2] - dx, b[3] - dy]
+}
+
 /// Which per-pixel classifier turns the boxes into class evidence.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -159,6 +257,16 @@ pub struct ClassifyParams {
     pub pixel: pixelclass::Params,
     /// Pixels sampled (seeded) per training box, by either method.
     pub samples_per_box: usize,
+    /// A window box whose shorter side is at least this many pixels is taken for a whole
+    /// window (frame, bars, reflections and all) rather than a patch of glass: it is sampled
+    /// by the rule of [`training_samples`] (issue 21). `usize::MAX`: every box as drawn.
+    pub whole_window_side: usize,
+    /// A whole window's box is sampled from its middle only: shrunk by this fraction of its
+    /// width and height on each side. 0: the whole box.
+    pub window_inner: f64,
+    /// The ring just outside a whole window's box, this fraction of its width and height
+    /// wide, trains the wall class (pixels inside any window box excepted). 0: no ring.
+    pub window_ring: f64,
     /// Ridge added to every covariance diagonal (features are in [0, 1] units).
     pub ridge: f64,
     /// Plus this fraction of each feature's variance over the whole image. Departure (§3.1.3):
@@ -176,6 +284,9 @@ impl Default for ClassifyParams {
             features: FeatureParams::default(),
             pixel: pixelclass::Params::default(),
             samples_per_box: 400,
+            whole_window_side: WHOLE_WINDOW_SIDE,
+            window_inner: WINDOW_INNER,
+            window_ring: WINDOW_RING,
             ridge: 1e-4,
             ridge_rel: 0.05,
             em_iterations: 50,
@@ -227,25 +338,27 @@ impl Classifier {
         p: &ClassifyParams,
     ) -> Result<Classifier> {
         let boxes = training.boxes(features.width, features.height)?;
-        let mut rng = ChaCha8Rng::seed_from_u64(p.features.seed ^ 0x5eed);
+        let groups = training_samples(
+            &boxes,
+            p,
+            features.width,
+            features.height,
+            p.features.seed ^ 0x5eed,
+        );
         let ridge = ridge_vector(features, p);
         let mut mixtures = BTreeMap::new();
-        for (class, bs) in &boxes {
+        for class in boxes.keys() {
             let mut data: Vec<&[f32]> = Vec::new();
-            let mut groups = Vec::new();
-            for b in bs {
-                let n = (b[2] - b[0]) * (b[3] - b[1]);
-                let take = n.min(p.samples_per_box);
-                let mut g = Vec::with_capacity(take);
-                for s in 0..take {
-                    let k = if take == n { s } else { rng.random_range(0..n) };
-                    let (x, y) = (b[0] + k % (b[2] - b[0]), b[1] + k / (b[2] - b[0]));
+            let mut members = Vec::new();
+            for (_, points) in groups.iter().filter(|g| g.0 == *class) {
+                let mut g = Vec::with_capacity(points.len());
+                for &(x, y) in points {
                     g.push(data.len());
                     data.push(features.at(x, y));
                 }
-                groups.push(g);
+                members.push(g);
             }
-            let gmm = Gmm::fit(&data, &groups, &ridge, p.em_iterations)?;
+            let gmm = Gmm::fit(&data, &members, &ridge, p.em_iterations)?;
             mixtures.insert(*class, gmm);
         }
         Ok(Classifier { mixtures })
@@ -339,19 +452,22 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
     }
     let boxes = training.boxes(w as usize, h as usize)?;
     if p.method == Method::Forest {
-        // Departure (§3.1.3–3.1.4, issue 21): the forest's ln p stand for ln P_kj.
-        let present: Vec<(&Class, &Vec<PixelBox>)> = boxes.iter().collect();
-        let per_class: Vec<&[PixelBox]> = present.iter().map(|(_, b)| b.as_slice()).collect();
-        let logs = forest::log_probabilities(
-            img,
-            &per_class,
-            p.samples_per_box,
-            p.features.seed,
-            &p.pixel,
-        )?;
+        let present: Vec<Class> = boxes.keys().copied().collect();
+        let seed = p.features.seed ^ 0xf0_7e57;
+        let samples: Vec<pixelclass::Sample> =
+            training_samples(&boxes, p, w as usize, h as usize, seed)
+                .into_iter()
+                .flat_map(|(class, points)| {
+                    let index = present.iter().position(|c| *c == class).expect("present");
+                    points
+                        .into_iter()
+                        .map(move |(x, y)| pixelclass::Sample { x, y, class: index })
+                })
+                .collect();
+        let logs = forest::log_maps(img, &samples, present.len(), &p.pixel, p.features.seed)?;
         let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
-        for ((class, _), m) in present.into_iter().zip(logs) {
-            maps[*class as usize] = Some(m);
+        for (class, map) in present.iter().zip(logs) {
+            maps[*class as usize] = Some(map);
         }
         return Ok(LogLikelihoods {
             width: w as usize,
@@ -509,6 +625,30 @@ mod tests {
         assert_eq!(labels[15 * 40 + 15], Class::Window);
         assert_eq!(labels[2 * 40 + 2], Class::Wall);
         assert!(ll.get(Class::Background).is_none());
+    }
+
+    #[test]
+    fn whole_window_boxes_train_wall_on_their_ring() {
+        let mut boxes = BTreeMap::new();
+        boxes.insert(Class::Window, vec![[20, 20, 40, 50], [60, 5, 66, 11]]);
+        boxes.insert(Class::Wall, vec![[0, 0, 9, 9]]);
+        let p = ClassifyParams::default();
+        let g = training_samples(&boxes, &p, 100, 80, 1);
+        // Three drawn boxes, one ring (the 6-px window box is a patch of glass, no ring).
+        assert_eq!(g.len(), 4);
+        let (class, ring) = &g[3];
+        assert_eq!(*class, Class::Wall);
+        assert_eq!(ring.len(), p.samples_per_box);
+        for &(x, y) in ring {
+            assert!((18..42).contains(&x) && (17..53).contains(&y), "{x} {y}");
+            assert!(!((20..40).contains(&x) && (20..50).contains(&y)), "{x} {y}");
+        }
+        // Without the ring the drawn boxes alone, sampled as drawn.
+        let off = ClassifyParams {
+            window_ring: 0.0,
+            ..p
+        };
+        assert_eq!(training_samples(&boxes, &off, 100, 80, 1).len(), 3);
     }
 
     #[test]

@@ -1,0 +1,50 @@
+//! One photo's façade steps in one call, so that the façade command, the pipeline and the
+//! evaluation run the same ones: classify → repeats (when the user drew whole windows) →
+//! search.
+
+use image::RgbImage;
+
+use crate::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify, is_whole_window};
+use crate::error::Result;
+use crate::model::FacadeModel;
+use crate::repeat::{RepeatParams, Repeats, evidence, find_repeats};
+use crate::search::{SearchParams, parse};
+
+/// Classifies `img` from `training`, and, when `rp.evidence > 0` and every window box looks
+/// like a whole window ([`is_whole_window`] with `cp.whole_window_side`), finds the windows'
+/// repeats ([`find_repeats`]) and adds them to the window evidence ([`evidence`]); then
+/// searches the façade model. Returns the log-likelihoods the search read, the model, and the
+/// repeats (`None` when the step did not run).
+pub fn parse_photo(
+    img: &RgbImage,
+    training: &Training,
+    cp: &ClassifyParams,
+    sp: &SearchParams,
+    rp: &RepeatParams,
+) -> Result<(LogLikelihoods, FacadeModel, Option<Repeats>)> {
+    let mut ll = classify(img, training, cp)?;
+    let repeats = whole_windows(img, training, cp)
+        .filter(|_| rp.evidence > 0.0)
+        .map(|wins| {
+            let r = find_repeats(img, &wins, rp);
+            evidence(&mut ll, &r, rp.evidence);
+            r
+        });
+    let model = parse(img, &ll, sp)?;
+    Ok((ll, model, repeats))
+}
+
+/// The window boxes, when there are some and all look like whole windows.
+fn whole_windows(
+    img: &RgbImage,
+    training: &Training,
+    cp: &ClassifyParams,
+) -> Option<Vec<[f64; 4]>> {
+    let boxes = training
+        .boxes(img.width() as usize, img.height() as usize)
+        .ok()?;
+    let wins = boxes.get(&Class::Window)?;
+    wins.iter()
+        .all(|b| is_whole_window(b, cp.whole_window_side))
+        .then(|| wins.iter().map(|b| b.map(|v| v as f64)).collect())
+}
