@@ -3,8 +3,9 @@
 
 use anyhow::{Result, anyhow};
 use clap::Args;
-use facade::classify::{self, ClassifyParams, FeatureParams, Method, Training};
-use facade::search::{self, SearchParams};
+use facade::classify::{ClassifyParams, FeatureParams, Method, Training};
+use facade::repeat::RepeatParams;
+use facade::search::SearchParams;
 use image::GrayImage;
 use std::path::PathBuf;
 
@@ -28,12 +29,18 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         },
         ..Default::default()
     };
-    let (ll, model) = crate::progress::with_spinner("pixel classes (§3.1.2–3.1.4)", |spinner| {
-        let ll = classify::classify(&img, &training, &params)?;
-        spinner.set_message("façades, floors and windows (§3.1.5–3.1.7)");
-        let model = search::parse(&img, &ll, &SearchParams::default())?;
-        Ok::<_, facade::FacadeError>((ll, model))
-    })
+    let (ll, model, repeats) = crate::progress::with_spinner(
+        "pixel classes (§3.1.2–3.1.4), repeated windows, façades, floors and windows (§3.1.5–3.1.7)",
+        |_| {
+            facade::parse_photo(
+                &img,
+                &training,
+                &params,
+                &SearchParams::default(),
+                &RepeatParams::default(),
+            )
+        },
+    )
     .map_err(|e| anyhow!("{file}: {e}"))?;
     let labels = model.labels();
     let mut outputs = Outputs::default();
@@ -56,8 +63,17 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         .flat_map(|f| &f.floors)
         .map(|fl| fl.windows.len())
         .sum();
+    // The window boxes were whole windows: say how many repeats backed the search.
+    let repeated = repeats.map_or(String::new(), |r| {
+        format!(
+            "; the drawn windows' repeats proposed {} window(s) in {} column(s) and {} row(s)",
+            r.windows.len(),
+            r.columns.len(),
+            r.rows.len()
+        )
+    });
     eprintln!(
-        "{file}: {} façade(s), {} floor(s), {windows} window(s); written to {}",
+        "{file}: {} façade(s), {} floor(s), {windows} window(s){repeated}; written to {}",
         model.facades.len(),
         model.facades.iter().map(|f| f.floors.len()).sum::<usize>(),
         args.output.display()

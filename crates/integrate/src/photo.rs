@@ -3,10 +3,11 @@
 //! search (§3.1.5–3.1.7). Boxes and points are given in the photo's pixels and mapped through
 //! the rectifying homography, so a project stays valid if rectification is re-run.
 
-use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training, classify};
+use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training};
 use facade::model::FacadeModel;
 use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
-use facade::search::{SearchParams, parse};
+use facade::repeat::RepeatParams;
+use facade::search::SearchParams;
 use image::RgbImage;
 use image::imageops::crop_imm;
 use nalgebra::Matrix3;
@@ -126,10 +127,16 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         ..Default::default()
     };
     params.features.seed = photo.seed;
-    let log_likelihoods = classify(&rectified, &training, &params)
-        .map_err(|e| err("pixel classes (§3.1.2–3.1.4)", e))?;
-    let model = parse(&rectified, &log_likelihoods, &SearchParams::default())
-        .map_err(|e| err("façade search (§3.1.7)", e))?;
+    // Classes, the drawn windows' repeats (when the window boxes are whole windows) and the
+    // search, as `castellan facade` runs them.
+    let (log_likelihoods, model, _) = facade::parse_photo(
+        &rectified,
+        &training,
+        &params,
+        &SearchParams::default(),
+        &RepeatParams::default(),
+    )
+    .map_err(|e| err("pixel classes and façade search (§3.1.2–3.1.7)", e))?;
     Ok(FacadeEstimate {
         name: photo.name.to_string(),
         homography,
