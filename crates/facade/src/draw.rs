@@ -55,6 +55,24 @@ pub fn probability_overlay(img: &RgbImage, ll: &LogLikelihoods) -> RgbImage {
     o
 }
 
+/// Outlines boxes [x0, y0, x1, y1] (exclusive ends) two pixels thick in the window colour,
+/// inside each box: the windows `repeat` proposed, over a probability or label overlay.
+pub fn outline_windows(img: &mut RgbImage, boxes: &[[f64; 4]]) {
+    let colour = image::Rgb(COLOURS[2]);
+    for b in boxes {
+        let (x0, y0) = (b[0].round() as i32, b[1].round() as i32);
+        let (w, h) = ((b[2] - b[0]).round() as i32, (b[3] - b[1]).round() as i32);
+        for inset in 0..2 {
+            let (w, h) = (w - 2 * inset, h - 2 * inset);
+            if w > 0 && h > 0 {
+                let r =
+                    imageproc::rect::Rect::at(x0 + inset, y0 + inset).of_size(w as u32, h as u32);
+                imageproc::drawing::draw_hollow_rect_mut(img, r, colour);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -69,6 +87,19 @@ mod tests {
         assert_eq!(o.get_pixel(2, 0), &Rgb([50, 160, 50]));
         // Labels past 2 draw as windows.
         assert_eq!(o.get_pixel(3, 0), &Rgb([50, 160, 50]));
+    }
+
+    #[test]
+    fn windows_are_outlined_two_pixels_thick_inside_their_box() {
+        let mut img = RgbImage::from_pixel(8, 8, Rgb([0, 0, 0]));
+        outline_windows(&mut img, &[[1.0, 1.0, 7.0, 7.0]]);
+        let green = Rgb([0, 220, 0]);
+        for (x, y) in [(1, 1), (6, 6), (2, 2), (5, 3), (3, 5)] {
+            assert_eq!(img.get_pixel(x, y), &green, "({x}, {y})");
+        }
+        for (x, y) in [(0, 0), (7, 7), (3, 3), (4, 4)] {
+            assert_eq!(img.get_pixel(x, y), &Rgb([0, 0, 0]), "({x}, {y})");
+        }
     }
 
     #[test]

@@ -61,4 +61,4 @@ pub mod repeat;
 pub mod search;
 
 pub use error::{FacadeError, Result};
-pub use pipeline::parse_photo;
+pub use pipeline::{classify_with_repeats, parse_photo};

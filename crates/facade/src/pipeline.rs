@@ -22,6 +22,20 @@ pub fn parse_photo(
     sp: &SearchParams,
     rp: &RepeatParams,
 ) -> Result<(LogLikelihoods, FacadeModel, Option<Repeats>)> {
+    let (ll, repeats) = classify_with_repeats(img, training, cp, rp)?;
+    let model = parse(img, &ll, sp)?;
+    Ok((ll, model, repeats))
+}
+
+/// The first two steps of [`parse_photo`]: the class log-likelihoods with the repeats' window
+/// evidence added (what the search reads, and what `castellan serve` shows live), and the
+/// repeats when the step ran.
+pub fn classify_with_repeats(
+    img: &RgbImage,
+    training: &Training,
+    cp: &ClassifyParams,
+    rp: &RepeatParams,
+) -> Result<(LogLikelihoods, Option<Repeats>)> {
     let mut ll = classify(img, training, cp)?;
     let repeats = whole_windows(img, training, cp)
         .filter(|_| rp.evidence > 0.0)
@@ -30,8 +44,7 @@ pub fn parse_photo(
             evidence(&mut ll, &r, rp.evidence);
             r
         });
-    let model = parse(img, &ll, sp)?;
-    Ok((ll, model, repeats))
+    Ok((ll, repeats))
 }
 
 /// The window boxes, when there are some and all look like whole windows.

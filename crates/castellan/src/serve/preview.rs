@@ -10,20 +10,23 @@ use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use facade::classify::{ClassifyParams, Training, classify};
+use facade::classify::{ClassifyParams, Training};
+use facade::repeat::RepeatParams;
 
 use super::app::{ApiError, App, blocking, err, find_facade};
 use crate::images::read_image;
 
-/// The PNG of the photo tinted by class probability (`facade::draw::probability_overlay`);
-/// header `x-castellan-ms` says how long the classifier took. 422 names the bad box or the
-/// missing class.
+/// The PNG of the photo tinted by class probability (`facade::draw::probability_overlay`) as
+/// the façade search will read it: when the window boxes are whole windows, with their
+/// repeats' evidence added and the repeats outlined (`facade::classify_with_repeats`). Headers:
+/// `x-castellan-ms`, the classifier's time; `x-castellan-repeats`, the windows proposed (0 when
+/// the step did not run). 422 names the bad box or the missing class.
 pub async fn preview(
     State(app): State<Arc<App>>,
     Path(name): Path<String>,
     Json(training): Json<Training>,
 ) -> Result<Response, ApiError> {
-    let (png, ms) = blocking(app, "preview", move |app| {
+    let (png, ms, repeats) = blocking(app, "preview", move |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let f = find_facade(&p, &name)?;
         let path = app
@@ -42,14 +45,16 @@ pub async fn preview(
         let unprocessable = |e: facade::FacadeError| {
             ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{name}: {e}"))
         };
-        let ll = classify(&photo, &training, &params).map_err(unprocessable)?;
+        let (ll, repeats) =
+            facade::classify_with_repeats(&photo, &training, &params, &RepeatParams::default())
+                .map_err(unprocessable)?;
         let ms = t.elapsed().as_millis();
-        let png = crate::images::png(
-            &facade::draw::probability_overlay(&photo, &ll),
-            std::path::Path::new("preview.png"),
-        )
-        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
-        Ok((png, ms))
+        let mut map = facade::draw::probability_overlay(&photo, &ll);
+        let proposed = repeats.map_or(Vec::new(), |r| r.windows);
+        facade::draw::outline_windows(&mut map, &proposed);
+        let png = crate::images::png(&map, std::path::Path::new("preview.png"))
+            .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))?;
+        Ok((png, ms, proposed.len()))
     })
     .await?;
     Ok((
@@ -59,6 +64,10 @@ pub async fn preview(
             (
                 header::HeaderName::from_static("x-castellan-ms"),
                 ms.to_string(),
+            ),
+            (
+                header::HeaderName::from_static("x-castellan-repeats"),
+                repeats.to_string(),
             ),
         ],
         png,

@@ -298,8 +298,11 @@ async function showPreview() {
   img.onload = () => { img.dataset.loaded = 'true'; };
   img.src = url;
   const n = Object.values(classes).reduce((a, l) => a + l.length, 0);
+  const repeats = Number(res.headers.get('x-castellan-repeats') || 0);
+  info.dataset.repeats = String(repeats);
   info.textContent = `Class probabilities from ${n} boxes (green window, magenta wall, red ` +
-    `background; blended where unsure), ${res.headers.get('x-castellan-ms')} ms`;
+    `background; blended where unsure), ${res.headers.get('x-castellan-ms')} ms` +
+    (repeats ? `; your whole windows repeat as ${repeats} windows (outlined green)` : '');
 }
 
 function drawBoxes(ctx) {
