@@ -41,6 +41,7 @@
 //! Pure: no files, no printing; randomness flows from [`ForestParams::seed`], and the output
 //! is the same for a seed whatever the number of threads.
 
+pub mod autocontext;
 pub mod channels;
 pub mod error;
 pub mod features;
@@ -48,6 +49,7 @@ pub mod filters;
 pub mod forest;
 pub mod resample;
 
+pub use autocontext::AutoContext;
 pub use channels::Channels;
 pub use error::{PixelClassError, Result};
 pub use features::{Family, Features, FilterBank};
@@ -72,6 +74,8 @@ pub struct Params {
     /// 450 x 330), was measured on the façade sets: no less accurate than the full image, and
     /// the features and the prediction cost a fraction.
     pub max_pixels: usize,
+    /// A second, autocontext stage ([`autocontext`]); `None`: the single forest.
+    pub autocontext: Option<AutoContext>,
 }
 
 impl Default for Params {
@@ -80,6 +84,7 @@ impl Default for Params {
             bank: FilterBank::default(),
             forest: ForestParams::default(),
             max_pixels: 150_000,
+            autocontext: None,
         }
     }
 }
@@ -133,13 +138,21 @@ pub fn classify(
     let dim = f.dim();
     let mut x = Vec::with_capacity(samples.len() * dim);
     let mut labels = Vec::with_capacity(samples.len());
+    let mut idx = Vec::with_capacity(samples.len());
+    let mut pos = Vec::with_capacity(samples.len());
     for s in samples {
-        let i = (s.y * hs / h) * ws + s.x * ws / w;
+        let (sx, sy) = (s.x * ws / w, s.y * hs / h);
+        let i = sy * ws + sx;
         x.extend(f.planes.iter().map(|pl| pl[i]));
         labels.push(s.class);
+        idx.push(i);
+        pos.push((sx, sy));
     }
     let forest = Forest::train(&x, dim, &labels, classes, &p.forest)?;
-    let prob = forest.predict(&f)?;
+    let mut prob = forest.predict(&f)?;
+    if let Some(ac) = &p.autocontext {
+        prob = autocontext::stage_two(f, &prob, &idx, &pos, &labels, classes, &p.forest, ac)?;
+    }
     Ok(if (ws, hs) == (w, h) {
         prob
     } else {
