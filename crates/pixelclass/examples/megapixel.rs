@@ -60,6 +60,13 @@ fn main() {
         ("single stage", None),
         ("autocontext", Some(AutoContext::default())),
         (
+            "autocontext, row/column only",
+            Some(AutoContext {
+                sigmas: vec![],
+                ..AutoContext::default()
+            }),
+        ),
+        (
             "autocontext, 2 folds",
             Some(AutoContext {
                 folds: 2,

@@ -100,11 +100,11 @@ pub fn folds(pos: &[(usize, usize)], labels: &[usize], classes: usize, k: usize)
                 else {
                     continue;
                 };
-                if let Some(&j) = at.get(&(xx, yy)) {
-                    if labels[j] == labels[i] {
-                        let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-                        parent[a.max(b)] = a.min(b);
-                    }
+                if let Some(&j) = at.get(&(xx, yy))
+                    && labels[j] == labels[i]
+                {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                    parent[a.max(b)] = a.min(b);
                 }
             }
         }
