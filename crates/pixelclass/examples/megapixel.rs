@@ -58,19 +58,19 @@ fn main() {
     // The whole `classify`, single stage and with autocontext (in-sample and 2-fold context).
     for (name, ac) in [
         ("single stage", None),
-        ("autocontext", Some(AutoContext::default())),
         (
-            "autocontext, row/column only",
-            Some(AutoContext {
-                sigmas: vec![],
-                ..AutoContext::default()
-            }),
+            "autocontext σ 1…16 + row/column",
+            Some(AutoContext::smoothed()),
+        ),
+        (
+            "autocontext row/column, averaged (default)",
+            Some(AutoContext::default()),
         ),
         (
             "autocontext, 2 folds",
             Some(AutoContext {
                 folds: 2,
-                ..AutoContext::default()
+                ..AutoContext::smoothed()
             }),
         ),
     ] {

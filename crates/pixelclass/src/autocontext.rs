@@ -25,15 +25,32 @@ pub struct AutoContext {
     pub folds: usize,
     /// Trees of each fold forest (0: as many as the stage-1 forest).
     pub fold_trees: usize,
+    /// Return the mean of the two stages' maps instead of stage 2's alone.
+    pub average: bool,
 }
 
+/// The default, measured on the façade sets (docs/pixelclass.md): row and column means only,
+/// in-sample context, output the mean of the two stages' maps.
 impl Default for AutoContext {
     fn default() -> Self {
         AutoContext {
-            sigmas: vec![1.0, 2.0, 4.0, 8.0, 16.0],
+            sigmas: Vec::new(),
             row_column: true,
             folds: 0,
             fold_trees: 0,
+            average: true,
+        }
+    }
+}
+
+impl AutoContext {
+    /// ilastik-like context: the maps smoothed at σ = 1, 2, 4, 8, 16 plus the row and column
+    /// means, stage 2's map alone.
+    pub fn smoothed() -> AutoContext {
+        AutoContext {
+            sigmas: vec![1.0, 2.0, 4.0, 8.0, 16.0],
+            average: false,
+            ..AutoContext::default()
         }
     }
 }
@@ -187,5 +204,12 @@ pub fn stage_two(
     }
     let mut fp = *forest;
     fp.seed = forest.seed.wrapping_add(0xac_0000_0000);
-    Forest::train(&x, dim, labels, classes, &fp)?.predict(&f2)
+    let mut p2 = Forest::train(&x, dim, labels, classes, &fp)?.predict(&f2)?;
+    if ac.average {
+        p2.data
+            .iter_mut()
+            .zip(&p1.data)
+            .for_each(|(a, b)| *a = 0.5 * (*a + b));
+    }
+    Ok(p2)
 }

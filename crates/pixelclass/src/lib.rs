@@ -10,6 +10,8 @@
 //!   DoG, structure-tensor and Hessian eigenvalues) and [`features::compute`] → [`Features`].
 //! - [`forest`]: the [`Forest`] (Gini trees on binned features, class-balanced, seeded per tree)
 //!   and its [`Probabilities`].
+//! - [`autocontext`]: the optional second stage ([`AutoContext`]): a forest on the bank plus
+//!   the first stage's maps smoothed and averaged over rows and columns.
 //! - [`resample`]: the working resolution (area shrink before, bilinear enlarge after).
 //! - [`classify`] runs it all: channels + labelled [`Sample`]s → probabilities.
 //!
@@ -74,7 +76,9 @@ pub struct Params {
     /// 450 x 330), was measured on the façade sets: no less accurate than the full image, and
     /// the features and the prediction cost a fraction.
     pub max_pixels: usize,
-    /// A second, autocontext stage ([`autocontext`]); `None`: the single forest.
+    /// A second, autocontext stage ([`autocontext`]); `None`: the single forest. The default,
+    /// [`AutoContext::default`] (row and column means, maps of both stages averaged), was
+    /// measured on the façade sets (docs/pixelclass.md).
     pub autocontext: Option<AutoContext>,
 }
 
@@ -84,7 +88,7 @@ impl Default for Params {
             bank: FilterBank::default(),
             forest: ForestParams::default(),
             max_pixels: 150_000,
-            autocontext: None,
+            autocontext: Some(AutoContext::default()),
         }
     }
 }

@@ -247,14 +247,18 @@ fn square_accuracy(p: &Probabilities, square: &impl Fn(usize, usize) -> Option<u
 fn autocontext_row_means_resolve_what_single_pixels_cannot() {
     let (img, s, square) = rows_scene();
     let ch = Channels::from_rgb(&img);
-    let single = classify(&ch, &s, 3, &Params::default()).unwrap();
+    let single = Params {
+        autocontext: None,
+        ..Params::default()
+    };
+    let single = classify(&ch, &s, 3, &single).unwrap();
     let a1 = square_accuracy(&single, &square);
     assert!(a1 < 0.75, "stage 1 cannot tell the rows apart, yet {a1}");
     for folds in [0, 2] {
         let p = Params {
             autocontext: Some(AutoContext {
                 folds,
-                ..AutoContext::default()
+                ..AutoContext::smoothed()
             }),
             ..Params::default()
         };
@@ -294,7 +298,11 @@ fn autocontext_is_bit_identical_per_seed_whatever_the_thread_count() {
     let mut other = p.clone();
     other.forest.seed = 1;
     assert_ne!(one, classify(&ch, &s, 3, &other).unwrap());
-    assert_ne!(one, classify(&ch, &s, 3, &Params::default()).unwrap());
+    let single = Params {
+        autocontext: None,
+        ..Params::default()
+    };
+    assert_ne!(one, classify(&ch, &s, 3, &single).unwrap());
 }
 
 #[test]
