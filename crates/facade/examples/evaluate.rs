@@ -22,6 +22,9 @@
 //! - FACADE_REPEAT=0|1: the repeat step of `facade::parse_photo` (proposals from whole-window
 //!   boxes added to the window evidence, weight FACADE_REPEAT_WEIGHT, acceptance
 //!   FACADE_REPEAT_THRESHOLD); prints the proposals' precision and recall.
+//! - FACADE_AC=0|1, FACADE_AC_FOLDS, FACADE_AC_ROWCOL, FACADE_AC_SIGMAS, FACADE_AC_FOLD_TREES,
+//!   FACADE_AC_AVERAGE:
+//!   the forest's autocontext stage (`pixelclass::AutoContext`).
 //! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
 //! - FACADE_DUMP=dir: truth, map and tree label images per photo.
 
@@ -161,6 +164,20 @@ fn classify_params() -> ClassifyParams {
     p.whole_window_side = env_usize("FACADE_WHOLE_SIDE", p.whole_window_side);
     p.window_inner = env_f64("FACADE_INNER", p.window_inner);
     p.window_ring = env_f64("FACADE_RING", p.window_ring);
+    // FACADE_AC=0|1 (autocontext off/on; unset: the default), FACADE_AC_FOLDS,
+    // FACADE_AC_ROWCOL=0|1, FACADE_AC_SIGMAS (comma-separated), FACADE_AC_FOLD_TREES, FACADE_AC_AVERAGE=0|1.
+    if let Ok(v) = std::env::var("FACADE_AC") {
+        p.pixel.autocontext = (v == "1").then(|| p.pixel.autocontext.clone().unwrap_or_default());
+    }
+    if let Some(ac) = &mut p.pixel.autocontext {
+        ac.folds = env_usize("FACADE_AC_FOLDS", ac.folds);
+        ac.fold_trees = env_usize("FACADE_AC_FOLD_TREES", ac.fold_trees);
+        ac.average = env_usize("FACADE_AC_AVERAGE", ac.average as usize) == 1;
+        ac.row_column = env_usize("FACADE_AC_ROWCOL", ac.row_column as usize) == 1;
+        if let Ok(v) = std::env::var("FACADE_AC_SIGMAS") {
+            ac.sigmas = v.split(',').filter_map(|s| s.parse().ok()).collect();
+        }
+    }
     p
 }
 

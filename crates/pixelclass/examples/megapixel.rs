@@ -3,7 +3,9 @@
 
 use std::time::Instant;
 
-use pixelclass::{Channels, Forest, Params, features, resample, working_size};
+use pixelclass::{
+    AutoContext, Channels, Forest, Params, classify, features, resample, working_size,
+};
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -53,4 +55,33 @@ fn main() {
     let labels = prob.argmax();
     let windows = labels.iter().filter(|&&l| l == 2).count();
     println!("window pixels: {windows}");
+    // The whole `classify`, single stage and with autocontext (in-sample and 2-fold context).
+    for (name, ac) in [
+        ("single stage", None),
+        (
+            "autocontext σ 1…16 + row/column",
+            Some(AutoContext::smoothed()),
+        ),
+        (
+            "autocontext row/column, averaged (default)",
+            Some(AutoContext::default()),
+        ),
+        (
+            "autocontext, 2 folds",
+            Some(AutoContext {
+                folds: 2,
+                ..AutoContext::smoothed()
+            }),
+        ),
+    ] {
+        let q = Params {
+            autocontext: ac,
+            ..p.clone()
+        };
+        let t = Instant::now();
+        let prob = classify(&Channels::from_rgb(&img), &samples, 3, &q).unwrap();
+        let s = t.elapsed().as_secs_f64();
+        let windows = prob.argmax().iter().filter(|&&l| l == 2).count();
+        println!("classify, {name}: {s:.3} s, window pixels {windows}");
+    }
 }

@@ -10,6 +10,8 @@
 //!   DoG, structure-tensor and Hessian eigenvalues) and [`features::compute`] → [`Features`].
 //! - [`forest`]: the [`Forest`] (Gini trees on binned features, class-balanced, seeded per tree)
 //!   and its [`Probabilities`].
+//! - [`autocontext`]: the optional second stage ([`AutoContext`]): a forest on the bank plus
+//!   the first stage's maps smoothed and averaged over rows and columns.
 //! - [`resample`]: the working resolution (area shrink before, bilinear enlarge after).
 //! - [`classify`] runs it all: channels + labelled [`Sample`]s → probabilities.
 //!
@@ -41,6 +43,7 @@
 //! Pure: no files, no printing; randomness flows from [`ForestParams::seed`], and the output
 //! is the same for a seed whatever the number of threads.
 
+pub mod autocontext;
 pub mod channels;
 pub mod error;
 pub mod features;
@@ -48,6 +51,7 @@ pub mod filters;
 pub mod forest;
 pub mod resample;
 
+pub use autocontext::AutoContext;
 pub use channels::Channels;
 pub use error::{PixelClassError, Result};
 pub use features::{Family, Features, FilterBank};
@@ -72,6 +76,10 @@ pub struct Params {
     /// 450 x 330), was measured on the façade sets: no less accurate than the full image, and
     /// the features and the prediction cost a fraction.
     pub max_pixels: usize,
+    /// A second, autocontext stage ([`autocontext`]); `None`: the single forest. The default,
+    /// [`AutoContext::default`] (row and column means, maps of both stages averaged), was
+    /// measured on the façade sets (docs/pixelclass.md).
+    pub autocontext: Option<AutoContext>,
 }
 
 impl Default for Params {
@@ -80,6 +88,7 @@ impl Default for Params {
             bank: FilterBank::default(),
             forest: ForestParams::default(),
             max_pixels: 150_000,
+            autocontext: Some(AutoContext::default()),
         }
     }
 }
@@ -133,13 +142,21 @@ pub fn classify(
     let dim = f.dim();
     let mut x = Vec::with_capacity(samples.len() * dim);
     let mut labels = Vec::with_capacity(samples.len());
+    let mut idx = Vec::with_capacity(samples.len());
+    let mut pos = Vec::with_capacity(samples.len());
     for s in samples {
-        let i = (s.y * hs / h) * ws + s.x * ws / w;
+        let (sx, sy) = (s.x * ws / w, s.y * hs / h);
+        let i = sy * ws + sx;
         x.extend(f.planes.iter().map(|pl| pl[i]));
         labels.push(s.class);
+        idx.push(i);
+        pos.push((sx, sy));
     }
     let forest = Forest::train(&x, dim, &labels, classes, &p.forest)?;
-    let prob = forest.predict(&f)?;
+    let mut prob = forest.predict(&f)?;
+    if let Some(ac) = &p.autocontext {
+        prob = autocontext::stage_two(f, &prob, &idx, &pos, &labels, classes, &p.forest, ac)?;
+    }
     Ok(if (ws, hs) == (w, h) {
         prob
     } else {
