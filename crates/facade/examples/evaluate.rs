@@ -9,8 +9,8 @@
 //! - FACADE_USER=boxes|windows: three s × s boxes per class (default), or whole-window boxes
 //!   (up to three ground-truth window components) with s × s boxes for wall and background.
 //! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS,
-//!   FACADE_CLASSIFIER (gmm or forest, default forest); FACADE_WHOLE_SIDE, FACADE_INNER,
-//!   FACADE_RING: how whole-window boxes are sampled (`ClassifyParams::whole_window_side`,
+//!   FACADE_CLASSIFIER (gmm or forest, default forest); FACADE_INNER,
+//!   FACADE_RING: how whole-window boxes are sampled (
 //!   `window_inner`, `window_ring`).
 //! - FACADE_MAP=model|oracle: the classifier's map (default), or an experiment map made from
 //!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
@@ -161,7 +161,6 @@ fn classify_params() -> ClassifyParams {
     {
         p.features.components = k;
     }
-    p.whole_window_side = env_usize("FACADE_WHOLE_SIDE", p.whole_window_side);
     p.window_inner = env_f64("FACADE_INNER", p.window_inner);
     p.window_ring = env_f64("FACADE_RING", p.window_ring);
     // FACADE_AC=0|1 (autocontext off/on; unset: the default), FACADE_AC_FOLDS,

@@ -158,14 +158,18 @@ pub fn simulate_user_inside(
             classes.insert(class, boxes);
         }
     }
-    Ok(Training { classes })
+    Ok(Training {
+        classes,
+        ..Default::default()
+    })
 }
 
 /// A user who marks whole windows: the bounding boxes ([x0, y0, x1, y1], exclusive ends) of up
 /// to `windows` connected components (8-connected) of the window class in `truth`, spread out
 /// (seeded farthest-point choice among components at least a quarter of the median
 /// component's area, so that window fragments and slivers are not picked), and, for the other
-/// classes, the `side` × `side` boxes of [`simulate_user`].
+/// classes, the `side` × `side` boxes of [`simulate_user`]. The windows are
+/// [`Training::whole_windows`]; the user draws no other window box.
 pub fn simulate_window_user(
     truth: &[u8],
     w: usize,
@@ -219,11 +223,9 @@ pub fn simulate_window_user(
             .expect("not empty");
         chosen.push(cands.swap_remove(i));
     }
-    if chosen.is_empty() {
-        t.classes.remove(&Class::Window);
-    } else {
-        t.classes.insert(Class::Window, chosen);
-    }
+    // The whole windows replace the small window boxes.
+    t.classes.remove(&Class::Window);
+    t.whole_windows = chosen;
     Ok(t)
 }
 
@@ -290,8 +292,12 @@ mod tests {
         }
         truth[2 * w + 30] = 2;
         let t = simulate_window_user(&truth, w, h, 2, 3, 3, 5).unwrap();
-        let wins = &t.classes[&Class::Window];
+        let wins = &t.whole_windows;
         assert_eq!(wins.len(), 2);
+        assert!(
+            !t.classes.contains_key(&Class::Window),
+            "only whole windows"
+        );
         for b in wins {
             assert!([2.0, 20.0, 40.0, 52.0].contains(&b[0]), "{b:?}");
             assert_eq!((b[2] - b[0], b[1], b[3]), (6.0, 5.0, 15.0));
@@ -302,6 +308,6 @@ mod tests {
         assert_eq!(t.classes[&Class::Wall].len(), 3);
         // Asking for more windows than there are gives them all.
         let all = simulate_window_user(&truth, w, h, 9, 3, 3, 5).unwrap();
-        assert_eq!(all.classes[&Class::Window].len(), 4);
+        assert_eq!(all.whole_windows.len(), 4);
     }
 }

@@ -4,15 +4,14 @@
 
 use image::RgbImage;
 
-use crate::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify, is_whole_window};
+use crate::classify::{ClassifyParams, LogLikelihoods, Training, classify};
 use crate::error::Result;
 use crate::model::FacadeModel;
 use crate::repeat::{RepeatParams, Repeats, evidence, find_repeats};
 use crate::search::{SearchParams, parse};
 
-/// Classifies `img` from `training`, and, when `rp.evidence > 0` and every window box looks
-/// like a whole window ([`is_whole_window`] with `cp.whole_window_side`), finds the windows'
-/// repeats ([`find_repeats`]) and adds them to the window evidence ([`evidence`]); then
+/// Classifies `img` from `training`, and, when `rp.evidence > 0` and the user outlined whole
+/// windows ([`Training::whole_windows`]), finds the windows' repeats ([`find_repeats`]) and adds them to the window evidence ([`evidence`]); then
 /// searches the façade model. Returns the log-likelihoods the search read, the model, and the
 /// repeats (`None` when the step did not run).
 pub fn parse_photo(
@@ -37,7 +36,7 @@ pub fn classify_with_repeats(
     rp: &RepeatParams,
 ) -> Result<(LogLikelihoods, Option<Repeats>)> {
     let mut ll = classify(img, training, cp)?;
-    let repeats = whole_windows(img, training, cp)
+    let repeats = whole_windows(img, training)
         .filter(|_| rp.evidence > 0.0)
         .map(|wins| {
             let r = find_repeats(img, &wins, rp);
@@ -47,17 +46,10 @@ pub fn classify_with_repeats(
     Ok((ll, repeats))
 }
 
-/// The window boxes, when there are some and all look like whole windows.
-fn whole_windows(
-    img: &RgbImage,
-    training: &Training,
-    cp: &ClassifyParams,
-) -> Option<Vec<[f64; 4]>> {
-    let boxes = training
-        .boxes(img.width() as usize, img.height() as usize)
+/// The windows the user outlined whole, if any.
+fn whole_windows(img: &RgbImage, training: &Training) -> Option<Vec<[f64; 4]>> {
+    let wins = training
+        .whole_window_boxes(img.width() as usize, img.height() as usize)
         .ok()?;
-    let wins = boxes.get(&Class::Window)?;
-    wins.iter()
-        .all(|b| is_whole_window(b, cp.whole_window_side))
-        .then(|| wins.iter().map(|b| b.map(|v| v as f64)).collect())
+    (!wins.is_empty()).then(|| wins.iter().map(|b| b.map(|v| v as f64)).collect())
 }

@@ -66,10 +66,9 @@ fn iou(a: &[f64; 4], b: &[u32; 4]) -> f64 {
 
 fn one_window_user(windows: &[[u32; 4]], pick: usize, walls: Vec<[f64; 4]>) -> Training {
     let mut t = Training {
-        classes: Default::default(),
+        whole_windows: vec![windows[pick].map(|v| v as f64)],
+        ..Default::default()
     };
-    t.classes
-        .insert(Class::Window, vec![windows[pick].map(|v| v as f64)]);
     t.classes.insert(Class::Wall, walls);
     t
 }

@@ -181,41 +181,47 @@ pub(crate) fn cut_outline(
 /// façade).
 fn inside(t: &Training, origin: [f64; 2], size: (u32, u32)) -> Training {
     let (w, h) = (f64::from(size.0), f64::from(size.1));
+    let moved = |boxes: &[[f64; 4]]| -> Vec<[f64; 4]> {
+        boxes
+            .iter()
+            .map(|b| {
+                [
+                    (b[0] - origin[0]).clamp(0.0, w),
+                    (b[1] - origin[1]).clamp(0.0, h),
+                    (b[2] - origin[0]).clamp(0.0, w),
+                    (b[3] - origin[1]).clamp(0.0, h),
+                ]
+            })
+            .filter(|b| b[2] > b[0] && b[3] > b[1])
+            .collect()
+    };
     let classes = t
         .classes
         .iter()
         .filter(|(class, _)| **class != Class::Background)
-        .map(|(name, boxes)| {
-            let moved = boxes
-                .iter()
-                .map(|b| {
-                    [
-                        (b[0] - origin[0]).clamp(0.0, w),
-                        (b[1] - origin[1]).clamp(0.0, h),
-                        (b[2] - origin[0]).clamp(0.0, w),
-                        (b[3] - origin[1]).clamp(0.0, h),
-                    ]
-                })
-                .filter(|b| b[2] > b[0] && b[3] > b[1])
-                .collect();
-            (*name, moved)
-        })
+        .map(|(name, boxes)| (*name, moved(boxes)))
         .collect();
-    Training { classes }
+    Training {
+        classes,
+        whole_windows: moved(&t.whole_windows),
+    }
 }
 
 /// Each box mapped through `h` and shrunk to the axis-aligned box inside the mapped
 /// quadrilateral (so no pixel of another class creeps in).
 pub fn map_training(t: &Training, h: &Matrix3<f64>) -> Training {
+    let mapped = |boxes: &[[f64; 4]]| -> Vec<[f64; 4]> {
+        boxes.iter().map(|b| map_box(b, h).unwrap_or(*b)).collect()
+    };
     let classes = t
         .classes
         .iter()
-        .map(|(name, boxes)| {
-            let mapped = boxes.iter().map(|b| map_box(b, h).unwrap_or(*b)).collect();
-            (*name, mapped)
-        })
+        .map(|(name, boxes)| (*name, mapped(boxes)))
         .collect();
-    Training { classes }
+    Training {
+        classes,
+        whole_windows: mapped(&t.whole_windows),
+    }
 }
 
 /// A box mapped through `h`, shrunk to the axis-aligned box inside the mapped quadrilateral.

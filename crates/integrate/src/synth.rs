@@ -278,7 +278,10 @@ impl Castle {
         let point = map(&hm, (rect[0] + rect[2]) / 2.0, (rect[1] + rect[3]) / 2.0);
         Photo {
             image,
-            training: Training { classes },
+            training: Training {
+                classes,
+                ..Default::default()
+            },
             facade_point: point,
         }
     }

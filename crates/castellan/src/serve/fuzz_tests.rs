@@ -138,7 +138,7 @@ proptest! {
         w in 0usize..100,
         h in 0usize..100,
     ) {
-        let t = Training { classes: [(facade::classify::Class::Wall, bs.clone()), (facade::classify::Class::Window, bs)].into() };
+        let t = Training { classes: [(facade::classify::Class::Wall, bs.clone())].into(), whole_windows: bs };
         if let Ok(classes) = t.boxes(w, h) {
             for b in classes.values().flatten() {
                 prop_assert!(b[0] < b[2] && b[2] <= w && b[1] < b[3] && b[3] <= h);

@@ -34,9 +34,7 @@ pub async fn project(State(app): State<Arc<App>>) -> Saved {
         for f in p.iter().flat_map(|p| &p.facades) {
             let t = integrate::pipeline::training(f, &app.store).unwrap_or_else(|e| {
                 problems.push(format!("[[facade]] image = \"{}\": {e}", f.image));
-                facade::classify::Training {
-                    classes: Default::default(),
-                }
+                facade::classify::Training::default()
             });
             training.insert(f.image.clone(), serde_json::to_value(t).unwrap_or_default());
         }

@@ -46,12 +46,18 @@ impl Class {
 }
 
 /// TRAINING.json: `{"classes": {"window": [[x0, y0, x1, y1], ...], "wall": [...],
-/// "background": [...]}}`, rectangles in pixels of the image (§3.1.2).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// "background": [...]}, "whole_windows": [[x0, y0, x1, y1], ...]}`, rectangles in pixels of
+/// the image (§3.1.2); `whole_windows` is optional.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Training {
     /// Boxes by class; an unknown class name is refused when the file is parsed, at its line
     /// and column.
     pub classes: BTreeMap<Class, Vec<[f64; 4]>>,
+    /// Windows the user outlined whole, frame included (issue 21; not the text's user, who
+    /// draws inside a class): each is a window box, the ring just outside it trains the wall,
+    /// and they are the templates whose repeats back the search (`crate::repeat`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub whole_windows: Vec<[f64; 4]>,
 }
 
 /// A training box clipped to the image: x0..x1, y0..y1 (exclusive ends).
@@ -89,8 +95,22 @@ impl Training {
         self.checked(width, height).map(|_| ())
     }
 
+    /// The whole windows ([`Training::whole_windows`]) clipped to the image, after the checks
+    /// of [`Training::validate`].
+    pub fn whole_window_boxes(&self, width: usize, height: usize) -> Result<Vec<PixelBox>> {
+        self.checked(width, height)?;
+        self.whole_windows
+            .iter()
+            .enumerate()
+            .map(|(i, b)| clip(b, "whole window", i, width, height))
+            .collect()
+    }
+
+    /// Every class box checked and clipped, the whole windows among the window boxes (after
+    /// the class's own).
     fn checked(&self, width: usize, height: usize) -> Result<BTreeMap<Class, Vec<PixelBox>>> {
-        let count: usize = self.classes.values().map(Vec::len).sum();
+        let count: usize =
+            self.classes.values().map(Vec::len).sum::<usize>() + self.whole_windows.len();
         if count > MAX_BOXES {
             return Err(FacadeError::BadTraining(format!(
                 "{count} boxes, more than the limit of {MAX_BOXES}"
@@ -101,62 +121,67 @@ impl Training {
             let name = class.name();
             let mut v = Vec::new();
             for (i, b) in boxes.iter().enumerate() {
-                let bad =
-                    |why: &str| FacadeError::BadTraining(format!("{name} box {i} {b:?} {why}"));
-                if !b.iter().all(|c| c.is_finite()) {
-                    return Err(bad("has a coordinate that is not a finite number"));
-                }
-                let [x0, y0, x1, y1] = *b;
-                if x1 < x0 || y1 < y0 {
-                    return Err(bad(
-                        "is inverted ([x0, y0, x1, y1] needs x0 <= x1 and y0 <= y1)",
-                    ));
-                }
-                if x1 == x0 || y1 == y0 {
-                    return Err(bad("has zero area"));
-                }
-                let cx0 = x0.max(0.0).round() as usize;
-                let cy0 = y0.max(0.0).round() as usize;
-                let cx1 = (x1.min(width as f64)).round().max(0.0) as usize;
-                let cy1 = (y1.min(height as f64)).round().max(0.0) as usize;
-                if cx1 <= cx0 || cy1 <= cy0 {
-                    return Err(bad(&format!(
-                        "has no pixels inside the {width}x{height} image"
-                    )));
-                }
-                v.push([cx0, cy0, cx1, cy1]);
+                v.push(clip(b, name, i, width, height)?);
             }
             if !v.is_empty() {
                 out.insert(class, v);
             }
         }
+        for (i, b) in self.whole_windows.iter().enumerate() {
+            let b = clip(b, "whole window", i, width, height)?;
+            out.entry(Class::Window).or_default().push(b);
+        }
         Ok(out)
     }
 }
 
-/// Default of [`ClassifyParams::whole_window_side`] (measured in docs/facade.md).
-pub const WHOLE_WINDOW_SIDE: usize = 16;
+/// One box checked and clipped to the image; errors name it as `{name} box {i}`.
+fn clip(b: &[f64; 4], name: &str, i: usize, width: usize, height: usize) -> Result<PixelBox> {
+    let bad = |why: &str| FacadeError::BadTraining(format!("{name} box {i} {b:?} {why}"));
+    if !b.iter().all(|c| c.is_finite()) {
+        return Err(bad("has a coordinate that is not a finite number"));
+    }
+    let [x0, y0, x1, y1] = *b;
+    if x1 < x0 || y1 < y0 {
+        return Err(bad(
+            "is inverted ([x0, y0, x1, y1] needs x0 <= x1 and y0 <= y1)",
+        ));
+    }
+    if x1 == x0 || y1 == y0 {
+        return Err(bad("has zero area"));
+    }
+    let cx0 = x0.max(0.0).round() as usize;
+    let cy0 = y0.max(0.0).round() as usize;
+    let cx1 = (x1.min(width as f64)).round().max(0.0) as usize;
+    let cy1 = (y1.min(height as f64)).round().max(0.0) as usize;
+    if cx1 <= cx0 || cy1 <= cy0 {
+        return Err(bad(&format!(
+            "has no pixels inside the {width}x{height} image"
+        )));
+    }
+    Ok([cx0, cy0, cx1, cy1])
+}
+
 /// Default of [`ClassifyParams::window_inner`].
 pub const WINDOW_INNER: f64 = 0.0;
 /// Default of [`ClassifyParams::window_ring`].
 pub const WINDOW_RING: f64 = 0.1;
 
-/// Whether a window box looks like a whole window: its shorter side is at least `side` pixels.
-pub fn is_whole_window(b: &PixelBox, side: usize) -> bool {
-    (b[2] - b[0]).min(b[3] - b[1]) >= side
-}
-
 /// The training pixels of every box, one group per box (class, points), seeded: up to
 /// `samples_per_box` pixels of each box, the boxes in class then drawing order.
 ///
-/// Departure (§3.1.3, issue 21): the text's user draws boxes inside a class; a user who draws
-/// a whole window ([`is_whole_window`]) gives a box holding frame, bars, reflections and a rim
+/// Departure (§3.1.3, issue 21): the text's user draws boxes inside a class; a user who
+/// outlines a whole window (`whole`, [`Training::whole_windows`]) gives a box holding frame,
+/// bars, reflections and a rim
 /// of wall. Such a box is sampled from its middle only (shrunk by `window_inner` on each
 /// side), and the ring just outside it (`window_ring` wide, pixels of other window boxes
 /// excepted) is added as a wall group — the wall next to a window is the wall a window must
-/// be told from. Boxes smaller than `whole_window_side` are sampled as drawn (the text).
+/// be told from. The other boxes are sampled as drawn (the text). The rule was first keyed on
+/// box size (a window box ≥ 16 px a side); a 21-px box inside a window then trained its glass
+/// as wall (CMP tree window IoU 0.063), so the user says which windows are whole.
 pub fn training_samples(
     boxes: &BTreeMap<Class, Vec<PixelBox>>,
+    whole: &[PixelBox],
     p: &ClassifyParams,
     width: usize,
     height: usize,
@@ -164,9 +189,7 @@ pub fn training_samples(
 ) -> Vec<(Class, Vec<(usize, usize)>)> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut out = Vec::new();
-    let whole = |class: Class, b: &PixelBox| {
-        class == Class::Window && is_whole_window(b, p.whole_window_side)
-    };
+    let whole = |class: Class, b: &PixelBox| class == Class::Window && whole.contains(b);
     for (&class, bs) in boxes {
         for b in bs {
             let b = if whole(class, b) {
@@ -257,10 +280,6 @@ pub struct ClassifyParams {
     pub pixel: pixelclass::Params,
     /// Pixels sampled (seeded) per training box, by either method.
     pub samples_per_box: usize,
-    /// A window box whose shorter side is at least this many pixels is taken for a whole
-    /// window (frame, bars, reflections and all) rather than a patch of glass: it is sampled
-    /// by the rule of [`training_samples`] (issue 21). `usize::MAX`: every box as drawn.
-    pub whole_window_side: usize,
     /// A whole window's box is sampled from its middle only: shrunk by this fraction of its
     /// width and height on each side. 0: the whole box.
     pub window_inner: f64,
@@ -284,7 +303,6 @@ impl Default for ClassifyParams {
             features: FeatureParams::default(),
             pixel: pixelclass::Params::default(),
             samples_per_box: 400,
-            whole_window_side: WHOLE_WINDOW_SIDE,
             window_inner: WINDOW_INNER,
             window_ring: WINDOW_RING,
             ridge: 1e-4,
@@ -338,8 +356,10 @@ impl Classifier {
         p: &ClassifyParams,
     ) -> Result<Classifier> {
         let boxes = training.boxes(features.width, features.height)?;
+        let whole = training.whole_window_boxes(features.width, features.height)?;
         let groups = training_samples(
             &boxes,
+            &whole,
             p,
             features.width,
             features.height,
@@ -452,10 +472,11 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
     }
     let boxes = training.boxes(w as usize, h as usize)?;
     if p.method == Method::Forest {
+        let whole = training.whole_window_boxes(w as usize, h as usize)?;
         let present: Vec<Class> = boxes.keys().copied().collect();
         let seed = p.features.seed ^ 0xf0_7e57;
         let samples: Vec<pixelclass::Sample> =
-            training_samples(&boxes, p, w as usize, h as usize, seed)
+            training_samples(&boxes, &whole, p, w as usize, h as usize, seed)
                 .into_iter()
                 .flat_map(|(class, points)| {
                     let index = present.iter().position(|c| *c == class).expect("present");
@@ -494,7 +515,31 @@ mod tests {
                     (class, v.clone())
                 })
                 .collect(),
+            ..Default::default()
         }
+    }
+
+    #[test]
+    fn whole_windows_are_window_boxes_checked_and_named() {
+        let mut t = training(&[("wall", vec![[0.0, 0.0, 5.0, 5.0]])]);
+        t.whole_windows = vec![[2.0, 2.0, 8.0, 9.0]];
+        // A whole window is a window box: the set is complete.
+        assert_eq!(t.boxes(10, 10).unwrap()[&Class::Window], vec![[2, 2, 8, 9]]);
+        assert_eq!(t.whole_window_boxes(10, 10).unwrap(), vec![[2, 2, 8, 9]]);
+        t.whole_windows.push([9.0, 9.0, 3.0, 3.0]);
+        let e = t.validate(10, 10).unwrap_err().to_string();
+        assert!(
+            e.contains("whole window box 1") && e.contains("inverted"),
+            "{e}"
+        );
+        // Optional in TRAINING.json, and left out when empty.
+        let parsed: Training = serde_json::from_str(r#"{"classes": {}}"#).unwrap();
+        assert!(parsed.whole_windows.is_empty());
+        assert!(
+            !serde_json::to_string(&parsed)
+                .unwrap()
+                .contains("whole_windows")
+        );
     }
 
     #[test]
@@ -633,8 +678,9 @@ mod tests {
         boxes.insert(Class::Window, vec![[20, 20, 40, 50], [60, 5, 66, 11]]);
         boxes.insert(Class::Wall, vec![[0, 0, 9, 9]]);
         let p = ClassifyParams::default();
-        let g = training_samples(&boxes, &p, 100, 80, 1);
-        // Three drawn boxes, one ring (the 6-px window box is a patch of glass, no ring).
+        let whole = [[20, 20, 40, 50]];
+        let g = training_samples(&boxes, &whole, &p, 100, 80, 1);
+        // Three drawn boxes, one ring (the other window box is a patch of glass, no ring).
         assert_eq!(g.len(), 4);
         let (class, ring) = &g[3];
         assert_eq!(*class, Class::Wall);
@@ -646,9 +692,11 @@ mod tests {
         // Without the ring the drawn boxes alone, sampled as drawn.
         let off = ClassifyParams {
             window_ring: 0.0,
-            ..p
+            ..p.clone()
         };
-        assert_eq!(training_samples(&boxes, &off, 100, 80, 1).len(), 3);
+        assert_eq!(training_samples(&boxes, &whole, &off, 100, 80, 1).len(), 3);
+        // A window box the user did not outline whole is sampled as drawn, whatever its size.
+        assert_eq!(training_samples(&boxes, &[], &p, 100, 80, 1).len(), 3);
     }
 
     #[test]
