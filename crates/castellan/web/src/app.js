@@ -5,7 +5,7 @@
 import { showModel } from './viewer.js';
 
 const $ = (id) => document.getElementById(id);
-const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744' };
+const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
 const state = {
   project: null, training: {}, facade: null, photos: {}, pending: null, corr: [],
   strokes: [], lines: { horizontal: [], vertical: [] }, version: null,
@@ -257,8 +257,22 @@ function boxes() {
   return t.classes;
 }
 
+// The list a drawn box of kind `cls` goes to: a class's boxes, or the whole windows (TRAINING.json
+// `whole_windows`, issue 21: windows outlined frame and all, whose repeats the search finds).
+function listFor(cls) {
+  const t = state.training[state.facade];
+  if (cls === 'whole_window') return (t.whole_windows ||= []);
+  return (boxes()[cls] ||= []);
+}
+
+// Every box with its kind, whole windows included.
+function allBoxes() {
+  const t = state.training[state.facade] || {};
+  return [...Object.entries(boxes()), ['whole_window', t.whole_windows || []]];
+}
+
 function showBoxCount(note) {
-  const n = Object.values(boxes()).reduce((a, l) => a + l.length, 0);
+  const n = allBoxes().reduce((a, [, l]) => a + l.length, 0);
   $('boxes-info').dataset.count = String(n);
   $('boxes-info').textContent = `${n} boxes (${note})`;
 }
@@ -273,7 +287,8 @@ async function showPreview() {
   const img = $('preview-overlay');
   const classes = boxes();
   info.className = '';
-  if (!(classes.window || []).length || !(classes.wall || []).length) {
+  const windows = (classes.window || []).length + (state.training[name].whole_windows || []).length;
+  if (!windows || !(classes.wall || []).length) {
     img.removeAttribute('src');
     img.dataset.loaded = 'false';
     info.textContent = 'Draw a window box and a wall box to see what the classifier learns';
@@ -297,7 +312,7 @@ async function showPreview() {
   if (img.src.startsWith('blob:')) URL.revokeObjectURL(img.src);
   img.onload = () => { img.dataset.loaded = 'true'; };
   img.src = url;
-  const n = Object.values(classes).reduce((a, l) => a + l.length, 0);
+  const n = allBoxes().reduce((a, [, l]) => a + l.length, 0);
   const repeats = Number(res.headers.get('x-castellan-repeats') || 0);
   info.dataset.repeats = String(repeats);
   info.textContent = `Class probabilities from ${n} boxes (green window, magenta wall, red ` +
@@ -306,11 +321,14 @@ async function showPreview() {
 }
 
 function drawBoxes(ctx) {
-  for (const [cls, list] of Object.entries(boxes())) {
+  for (const [cls, list] of allBoxes()) {
     ctx.strokeStyle = COLOURS[cls] || '#000';
     ctx.lineWidth = Math.max(2, ctx.canvas.width / 300);
+    // Whole windows dashed, boxes inside a class solid.
+    ctx.setLineDash(cls === 'whole_window' ? [10, 5] : []);
     for (const [x0, y0, x1, y1] of list) ctx.strokeRect(x0, y0, x1 - x0, y1 - y0);
   }
+  ctx.setLineDash([]);
   if (drag && drag.to) {
     ctx.setLineDash([6, 4]);
     ctx.strokeStyle = COLOURS[drag.cls];
@@ -371,7 +389,7 @@ window.addEventListener('mouseup', () => {
     const [x0, x1] = [d.from[0], d.to[0]].sort((a, b) => a - b);
     const [y0, y1] = [d.from[1], d.to[1]].sort((a, b) => a - b);
     if (x1 - x0 >= 2 && y1 - y0 >= 2) {
-      (boxes()[d.cls] ||= []).push([x0, y0, x1, y1].map(Math.round));
+      listFor(d.cls).push([x0, y0, x1, y1].map(Math.round));
       showPreview();
     }
   }
@@ -381,7 +399,7 @@ window.addEventListener('mouseup', () => {
 
 $('boxes-undo').addEventListener('click', () => {
   const cls = document.querySelector('input[name=class]:checked').value;
-  (boxes()[cls] || []).pop();
+  listFor(cls).pop();
   redrawPhoto();
   showBoxCount('unsaved');
   showPreview();

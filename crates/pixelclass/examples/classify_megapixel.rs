@@ -1,5 +1,5 @@
 //! The 1-Mpx pipeline stage by stage on a synthetic façade (for timing and peak memory:
-//! `/usr/bin/time -v cargo run --release -p pixelclass --example megapixel [MAX_PIXELS]`).
+//! `/usr/bin/time -v cargo run --release -p pixelclass --example classify_megapixel [MAX_PIXELS]`).
 
 use std::time::Instant;
 
