@@ -94,18 +94,21 @@ fn the_working_resolution_changes_little_on_large_shapes() {
     assert!(right as f64 > 0.93 * 160.0 * 120.0, "{right}");
 }
 
+/// `work` run in a pool of `threads` threads (the determinism tests' two pool sizes).
+fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(work)
+}
+
 #[test]
 fn same_seed_gives_bit_identical_maps_whatever_the_thread_count() {
     let (img, s) = scene();
     let ch = Channels::from_rgb(&img);
     let p = Params::default();
-    let run = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| classify(&ch, &s, 3, &p).unwrap())
-    };
+    let run = |threads: usize| on_threads(threads, || classify(&ch, &s, 3, &p).unwrap());
     let one = run(1);
     assert_eq!(one, run(3));
     assert_eq!(one, run(1));
@@ -286,13 +289,7 @@ fn autocontext_is_bit_identical_per_seed_whatever_the_thread_count() {
         }),
         ..Params::default()
     };
-    let run = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| classify(&ch, &s, 3, &p).unwrap())
-    };
+    let run = |threads: usize| on_threads(threads, || classify(&ch, &s, 3, &p).unwrap());
     let one = run(1);
     assert_eq!(one, run(3));
     let mut other = p.clone();
