@@ -3,7 +3,7 @@
 
 use anyhow::{Result, anyhow};
 use clap::Args;
-use facade::classify::{ClassifyParams, FeatureParams, Method, Training};
+use facade::classify::{ClassifyParams, Method, Training};
 use facade::repeat::RepeatParams;
 use facade::search::SearchParams;
 use image::GrayImage;
@@ -21,14 +21,7 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
     training
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;
-    let params = ClassifyParams {
-        method: args.classifier,
-        features: FeatureParams {
-            seed: args.seed,
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    let params = ClassifyParams::with(args.classifier, args.seed);
     let (ll, model, repeats) = crate::progress::with_spinner(
         "pixel classes (§3.1.2–3.1.4), repeated windows, façades, floors and windows (§3.1.5–3.1.7)",
         |_| {

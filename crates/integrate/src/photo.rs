@@ -122,11 +122,7 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
             (shift * homography, cut)
         }
     };
-    let mut params = ClassifyParams {
-        method: photo.classifier,
-        ..Default::default()
-    };
-    params.features.seed = photo.seed;
+    let params = ClassifyParams::with(photo.classifier, photo.seed);
     // Classes, the drawn windows' repeats (when the window boxes are whole windows) and the
     // search, as `castellan facade` runs them.
     let (log_likelihoods, model, _) = facade::parse_photo(

@@ -14,7 +14,7 @@ use facade::classify::{ClassifyParams, Training};
 use facade::repeat::RepeatParams;
 
 use super::app::{ApiError, App, blocking, err, find_facade};
-use crate::images::read_image;
+use super::stages::read_photo;
 
 /// The PNG of the photo tinted by class probability (`facade::draw::probability_overlay`) as
 /// the façade search will read it: when the window boxes are whole windows, with their
@@ -29,19 +29,9 @@ pub async fn preview(
     let (png, ms, repeats) = blocking(app, "preview", move |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let f = find_facade(&p, &name)?;
-        let path = app
-            .store
-            .path(&f.image)
-            .map_err(err(StatusCode::CONFLICT))?;
-        let photo = read_image(&path)
-            .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?
-            .to_rgb8();
+        let photo = read_photo(app, f)?;
         let t = Instant::now();
-        let mut params = ClassifyParams {
-            method: app.options.classifier,
-            ..Default::default()
-        };
-        params.features.seed = app.options.seed_for(&p);
+        let params = ClassifyParams::with(app.options.classifier, app.options.seed_for(&p));
         let unprocessable = |e: facade::FacadeError| {
             ApiError(StatusCode::UNPROCESSABLE_ENTITY, format!("{name}: {e}"))
         };

@@ -34,7 +34,7 @@ fn read_lines(app: &App, f: &FacadeEntry) -> Result<Option<ManualLines>, ApiErro
 }
 
 /// A façade photo of the project, decoded.
-fn read_photo(app: &App, f: &FacadeEntry) -> Result<image::RgbImage, ApiError> {
+pub(super) fn read_photo(app: &App, f: &FacadeEntry) -> Result<image::RgbImage, ApiError> {
     let path = app
         .store
         .path(&f.image)

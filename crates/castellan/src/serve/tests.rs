@@ -45,12 +45,17 @@ pub(super) fn app(dir: &Path, max_upload: usize) -> axum::Router {
 }
 
 /// Sends `req` as the page would: with the server's Host and the token, unless it has its own.
-pub(super) async fn send(app: &axum::Router, mut req: Request<Body>) -> (StatusCode, Vec<u8>) {
+pub(super) async fn send(app: &axum::Router, req: Request<Body>) -> (StatusCode, Vec<u8>) {
+    send_as_is(app, with_token(req)).await
+}
+
+/// `req` with the server's Host and the token, unless it has its own.
+fn with_token(mut req: Request<Body>) -> Request<Body> {
     let h = req.headers_mut();
     h.entry("host").or_insert(HOST.parse().unwrap());
     h.entry(super::access::TOKEN_HEADER)
         .or_insert(TOKEN.parse().unwrap());
-    send_as_is(app, req).await
+    req
 }
 
 /// Sends `req` without adding anything.
@@ -456,11 +461,4 @@ async fn the_live_probability_map_follows_the_boxes_and_writes_nothing() {
     .await;
     assert_eq!(s, StatusCode::NOT_FOUND);
     assert_eq!(folder(dir.path()), before, "a preview writes nothing");
-}
-
-fn with_token(mut req: Request<Body>) -> Request<Body> {
-    let h = req.headers_mut();
-    h.insert("host", HOST.parse().unwrap());
-    h.insert(super::access::TOKEN_HEADER, TOKEN.parse().unwrap());
-    req
 }
