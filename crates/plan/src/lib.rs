@@ -50,6 +50,7 @@ pub mod graph;
 pub mod hachure_bands;
 pub mod hachure_blobs;
 pub mod hatched_walls;
+pub mod ink;
 mod inner_towers;
 pub mod label;
 mod legend;
