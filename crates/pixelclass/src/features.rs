@@ -10,7 +10,9 @@ use crate::channels::Channels;
 use crate::filters::{derivatives, eigen2, plane, smooth};
 
 /// One family of filter responses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub enum Family {
     /// Gaussian smoothing G_σ.
     Smoothing,
@@ -58,7 +60,7 @@ impl Family {
 }
 
 /// Scales (pixels of the image the bank runs on) and families to compute for every channel.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FilterBank {
     pub sigmas: Vec<f32>,
     pub families: Vec<Family>,

@@ -48,7 +48,7 @@ impl Default for ForestParams {
 
 /// A node: an inner split (`x[feature] < threshold` goes left) or, with `feature == LEAF`, a
 /// leaf whose class distribution starts at `left` in the leaf array.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 struct Node {
     feature: u32,
     threshold: f32,
@@ -58,8 +58,9 @@ struct Node {
 
 const LEAF: u32 = u32::MAX;
 
-/// The trained forest.
-#[derive(Debug, Clone, PartialEq)]
+/// The trained forest. Serialisable (serde) so that a trained model can ship with a program;
+/// a deserialised forest must pass [`Forest::validate`] before it predicts.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Forest {
     pub classes: usize,
     pub dim: usize,
@@ -213,6 +214,46 @@ impl Forest {
 
     pub fn trees(&self) -> usize {
         self.roots.len()
+    }
+
+    /// Checks a forest that did not come from [`Forest::train`] (a model file): every index in
+    /// range, children after their parents (so every walk ends at a leaf), leaf distributions
+    /// inside the leaf array. Prediction on a forest that fails this could panic or loop.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |why: String| {
+            Err(PixelClassError::BadInput {
+                what: "forest".into(),
+                why,
+            })
+        };
+        if self.classes < 2 || self.dim == 0 || self.roots.is_empty() {
+            return bad(format!(
+                "{} classes, {} features, {} trees",
+                self.classes,
+                self.dim,
+                self.roots.len()
+            ));
+        }
+        let n = self.nodes.len();
+        if let Some(r) = self.roots.iter().find(|&&r| r as usize >= n) {
+            return bad(format!("root {r} outside {n} nodes"));
+        }
+        for (i, nd) in self.nodes.iter().enumerate() {
+            if nd.feature == LEAF {
+                if nd.left as usize + self.classes > self.leaves.len() {
+                    return bad(format!("leaf node {i} points outside the leaf values"));
+                }
+            } else if nd.feature as usize >= self.dim
+                || !nd.threshold.is_finite()
+                || nd.left as usize <= i
+                || nd.right as usize <= i
+                || nd.left as usize >= n
+                || nd.right as usize >= n
+            {
+                return bad(format!("node {i} is malformed"));
+            }
+        }
+        Ok(())
     }
 
     pub fn nodes(&self) -> usize {
@@ -527,6 +568,31 @@ mod tests {
             })
             .count();
         assert!(right >= 480, "{right} / 500");
+    }
+
+    #[test]
+    fn a_forest_survives_serialisation_and_a_damaged_one_is_refused() {
+        let (x, y) = xor(500);
+        let f = Forest::train(&x, 3, &y, 2, &ForestParams::default()).unwrap();
+        let bytes = postcard::to_allocvec(&f).unwrap();
+        let back: Forest = postcard::from_bytes(&bytes).unwrap();
+        assert_eq!(back, f);
+        assert!(back.validate().is_ok());
+        // A child pointing back at its parent would loop; an index past the end would panic.
+        let i = f.nodes.iter().position(|n| n.feature != LEAF).unwrap();
+        let mut looped = f.clone();
+        looped.nodes[i + 1..]
+            .iter_mut()
+            .find(|n| n.feature != LEAF)
+            .unwrap()
+            .left = i as u32;
+        assert!(looped.validate().is_err());
+        let mut outside = f.clone();
+        outside.nodes[i].feature = 3;
+        assert!(outside.validate().is_err());
+        let mut leafless = f.clone();
+        leafless.leaves.truncate(1);
+        assert!(leafless.validate().is_err());
     }
 
     #[test]
