@@ -158,6 +158,27 @@ pub fn preprocess_clean(
         stats.thin_line_pixels =
             drop_thin_lines(&mut img, radius, door, std::f64::consts::PI * t * t);
     }
+    let img = steps_two_to_five(img, min, &mut stats);
+    (img, stats)
+}
+
+/// The wall mask of the learned wall ink ([`crate::ink`], 255 = wall) through §5.1.2's steps
+/// (2)–(5) and the castle kept alone, as a thresholded drawing is. `level` is recorded as the
+/// threshold (P(wall) > 0.5 reads as 128).
+pub fn preprocess_learned(mask: GrayImage, min_region: f64) -> (GrayImage, PreStats) {
+    let total = (mask.width() as usize) * (mask.height() as usize);
+    let min = ((total as f64) * min_region).ceil().max(1.0) as usize;
+    let mut stats = PreStats {
+        threshold: 128,
+        ..Default::default()
+    };
+    let img = steps_two_to_five(mask, min, &mut stats);
+    (img, stats)
+}
+
+/// §5.1.2 (2)–(5) on a binary image: specks of paper filled, open/close 3 × 3, specks of ink
+/// removed; then the castle kept (regions outside its extent dropped); counts in `stats`.
+fn steps_two_to_five(mut img: GrayImage, min: usize, stats: &mut PreStats) -> GrayImage {
     // (2)-(3): white regions (4-connected: open space between 8-connected walls) under 0.05 %.
     let white = components(&img, 0, Connectivity::Four);
     stats.filled_white = remove_small(&mut img, &white, min, 255);
@@ -201,7 +222,7 @@ pub fn preprocess_clean(
         }
     }
     stats.wall_pixels = img.pixels().filter(|p| p[0] == 255).count();
-    (img, stats)
+    img
 }
 
 /// Typical wall thickness in pixels: for a strip of thickness T the mean distance from its

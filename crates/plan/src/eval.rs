@@ -20,6 +20,9 @@ pub struct DevPlan {
     /// Path relative to the data set's folder (as in its manifest.json).
     pub file: String,
     pub castle: String,
+    /// The book it comes from ([`crate::ink::train::source_of`] groups the tomes of one work).
+    #[serde(default)]
+    pub book: String,
     pub towers: usize,
     pub points: Vec<DevPoint>,
 }
@@ -234,6 +237,7 @@ mod tests {
     fn scores_and_totals_count_right_points_and_exact_towers() {
         let p = square_plan();
         let truth = DevPlan {
+            book: String::new(),
             file: "plans/square.png".into(),
             castle: "square".into(),
             towers: 0,

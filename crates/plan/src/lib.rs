@@ -120,6 +120,10 @@ pub struct Options {
     /// Join dotted and dashed lines ([`dashes::link_dashes`]) before the specks are removed
     /// (on: exact tower counts 5 → 6 on the development set, points unchanged).
     pub dashes: bool,
+    /// Where the wall mask comes from: the learned wall ink (default) or §5.1.2's threshold
+    /// with the clean-up steps above (`hatching`, `hachures`, `dashes`, `thin_lines` act on
+    /// that chain only).
+    pub ink: ink::Ink,
 }
 
 impl Default for Options {
@@ -138,6 +142,7 @@ impl Default for Options {
             hatching: false,
             hachures: false,
             dashes: true,
+            ink: ink::Ink::shipped(),
         }
     }
 }
@@ -233,12 +238,17 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
         1
     };
     let scale_bar = scalebar::find(&grey);
+    // The learned ink reads the drawing at its own resolution; its map is enlarged with it.
+    let learned = match &opts.ink {
+        ink::Ink::Learned(model) => Some(learned_mask(model, &grey, w * k, h * k)),
+        ink::Ink::Rules => None,
+    };
     let parsed = if k == 1 {
-        parse_grey(&grey, opts)?
+        parse_grey(&grey, learned, opts)?
     } else {
         let big =
             image::imageops::resize(&grey, w * k, h * k, image::imageops::FilterType::Triangle);
-        shrink(parse_grey(&big, opts)?, k, w, h)
+        shrink(parse_grey(&big, learned, opts)?, k, w, h)
     };
     Ok(ParsedPlan {
         scale_bar,
@@ -356,7 +366,25 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
     }
 }
 
-fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, PlanError> {
+/// The model's wall mask (P(wall) > 0.5, 255 = wall) of `grey` at `w` × `h`.
+fn learned_mask(model: &ink::WallInk, grey: &image::GrayImage, w: u32, h: u32) -> image::GrayImage {
+    let p = model.wall_probability(grey, w, h);
+    image::GrayImage::from_fn(w, h, |x, y| {
+        image::Luma([if p[(y * w + x) as usize] > 0.5 {
+            255
+        } else {
+            0
+        }])
+    })
+}
+
+/// Parses `grey` (already enlarged if it was small); `learned` is the learned wall mask at
+/// its size, `None` for §5.1.2's threshold and the clean-up chain.
+fn parse_grey(
+    grey: &image::GrayImage,
+    learned: Option<image::GrayImage>,
+    opts: &Options,
+) -> Result<ParsedPlan, PlanError> {
     let (w, h) = grey.dimensions();
     let cleanup = binarize::Cleanup {
         thin_lines: opts.thin_lines,
@@ -364,7 +392,10 @@ fn parse_grey(grey: &image::GrayImage, opts: &Options) -> Result<ParsedPlan, Pla
         hachures: opts.hachures,
         dashes: opts.dashes,
     };
-    let (mut bin, mut pre) = binarize::preprocess_clean(grey, opts.min_region, &cleanup);
+    let (mut bin, mut pre) = match learned {
+        Some(mask) => binarize::preprocess_learned(mask, opts.min_region),
+        None => binarize::preprocess_clean(grey, opts.min_region, &cleanup),
+    };
     if pre.wall_pixels == 0 {
         return Err(PlanError::NoWalls(pre.threshold));
     }

@@ -1,0 +1,68 @@
+//! Trains the wall-ink model that ships with castellan (issue 26), reproducibly from a seed:
+//! synthetic plans in randomised styles plus the wall masks painted on public-domain plans
+//! (`crates/plan/data/wall_masks*.json`; needs `../shared/data/castle_drawings_pd`).
+//!
+//! `cargo run --release -p plan --example train_ink -- [--seed 1] [--synthetic 60]
+//! [--out crates/plan/models/wall_ink.bin]`
+
+#[path = "common/ink_data.rs"]
+mod ink_data;
+
+use std::path::PathBuf;
+
+use plan::ink::train::{TrainParams, train};
+
+fn main() {
+    let mut seed = 1u64;
+    let mut synthetic = 60usize;
+    let mut out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models/wall_ink.bin");
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = |name: &str| {
+            args.next()
+                .unwrap_or_else(|| ink_data::fail(name, "needs a value"))
+        };
+        match a.as_str() {
+            "--seed" => {
+                seed = value("--seed")
+                    .parse()
+                    .unwrap_or_else(|e| ink_data::fail("--seed", e))
+            }
+            "--synthetic" => {
+                synthetic = value("--synthetic")
+                    .parse()
+                    .unwrap_or_else(|e| ink_data::fail("--synthetic", e))
+            }
+            "--out" => out = PathBuf::from(value("--out")),
+            _ => ink_data::fail(&a, "unknown argument (--seed, --synthetic, --out)"),
+        }
+    }
+    let Some(data) = ink_data::data_dir() else {
+        ink_data::fail(
+            "../shared/data/castle_drawings_pd",
+            "not found: the painted plans live there",
+        )
+    };
+    let recipes = ink_data::recipes();
+    let mut sheets = ink_data::synthetic(synthetic, seed);
+    sheets.extend(recipes.iter().map(|r| ink_data::painted_sheet(&data, r)));
+    let mut params = TrainParams::default();
+    params.forest.seed = seed;
+    let provenance = format!(
+        "seed {seed}; {synthetic} synthetic plans; {} painted plans (crates/plan/data/wall_masks*.json)",
+        recipes.len()
+    );
+    let t = std::time::Instant::now();
+    let model =
+        train(&sheets, &params, &provenance).unwrap_or_else(|e| ink_data::fail("training", e));
+    let bytes = model.to_bytes();
+    std::fs::write(&out, &bytes).unwrap_or_else(|e| ink_data::fail(&out.display().to_string(), e));
+    println!(
+        "{}: {} bytes, {} + {} nodes, trained in {:.1} s ({provenance})",
+        out.display(),
+        bytes.len(),
+        model.stages[0].nodes(),
+        model.stages.get(1).map_or(0, |f| f.nodes()),
+        t.elapsed().as_secs_f64()
+    );
+}

@@ -1,0 +1,232 @@
+//! The wall-ink model: a filter bank over the normalised grey drawing and one or two random
+//! forests (the second reads the first's wall map, smoothed at several scales, as context —
+//! ilastik's autocontext), serialised with postcard so that a trained model ships inside the
+//! binary (`crates/plan/models/wall_ink.bin`, retrained by `cargo run --release -p plan
+//! --example train_ink`; docs/plan.md).
+
+use image::GrayImage;
+use pixelclass::autocontext::{AutoContext, context};
+use pixelclass::{Channels, Features, FilterBank, Forest, Probabilities};
+use serde::{Deserialize, Serialize};
+
+/// Version of the model file; a file of another version is refused.
+pub const FORMAT: u32 = 1;
+
+/// The model shipped with castellan.
+pub const SHIPPED: &[u8] = include_bytes!("../../models/wall_ink.bin");
+
+/// A trained wall-ink classifier.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WallInk {
+    pub format: u32,
+    /// Features of the normalised grey drawing at the working resolution.
+    pub bank: FilterBank,
+    /// Drawings whose longer side exceeds this are shrunk to it (area averaging) before the
+    /// features; the maps are enlarged back bilinearly.
+    pub max_side: u32,
+    /// σ (working pixels) of the stage-1 wall map given to stage 2; empty: one stage.
+    pub context_sigmas: Vec<f32>,
+    /// Stage 1, then stage 2 if `context_sigmas` is not empty; class 1 is wall.
+    pub stages: Vec<Forest>,
+    /// How it was trained (seed, sources, counts), for the report.
+    pub provenance: String,
+}
+
+/// Why a model file cannot be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    #[error("wall-ink model: {0}")]
+    Decode(String),
+    #[error("wall-ink model has format {found}, this program reads format {FORMAT}")]
+    Format { found: u32 },
+    #[error("wall-ink model: {0}")]
+    Invalid(String),
+}
+
+impl WallInk {
+    pub fn to_bytes(&self) -> Vec<u8> {
+        postcard::to_allocvec(self).expect("a model always serialises")
+    }
+
+    /// Reads and checks a model (format, stage count, every forest's structure and width).
+    pub fn from_bytes(bytes: &[u8]) -> Result<WallInk, ModelError> {
+        let m: WallInk =
+            postcard::from_bytes(bytes).map_err(|e| ModelError::Decode(e.to_string()))?;
+        if m.format != FORMAT {
+            return Err(ModelError::Format { found: m.format });
+        }
+        let want = if m.context_sigmas.is_empty() { 1 } else { 2 };
+        if m.stages.len() != want || m.max_side < 16 || m.bank.sigmas.is_empty() {
+            return Err(ModelError::Invalid(format!(
+                "{} stages for {} context scales, working side {}",
+                m.stages.len(),
+                m.context_sigmas.len(),
+                m.max_side
+            )));
+        }
+        let dim1 = m.bank.dim(1);
+        for (k, f) in m.stages.iter().enumerate() {
+            f.validate()
+                .map_err(|e| ModelError::Invalid(format!("stage {}: {e}", k + 1)))?;
+            let dim = dim1 + k * m.context_sigmas.len();
+            if f.dim != dim || f.classes != 2 {
+                return Err(ModelError::Invalid(format!(
+                    "stage {} reads {} features of {} classes, expected {dim} of 2",
+                    k + 1,
+                    f.dim,
+                    f.classes
+                )));
+            }
+        }
+        Ok(m)
+    }
+
+    /// The model that ships with castellan.
+    pub fn shipped() -> Result<WallInk, ModelError> {
+        WallInk::from_bytes(SHIPPED)
+    }
+
+    /// The autocontext settings of stage 2: the smoothed stage-1 maps only.
+    pub fn context(&self) -> AutoContext {
+        AutoContext {
+            sigmas: self.context_sigmas.clone(),
+            row_column: false,
+            folds: 0,
+            fold_trees: 0,
+            average: false,
+        }
+    }
+
+    /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
+    /// multiple of it).
+    pub fn wall_probability(&self, grey: &GrayImage, out_w: u32, out_h: u32) -> Vec<f32> {
+        let features = working_features(grey, self.max_side, &self.bank);
+        let p = self.working_map(&features);
+        pixelclass::resample::enlarge(&p, out_w as usize, out_h as usize).class_map(1)
+    }
+
+    /// The maps of every stage at the working resolution, given the bank's features.
+    pub fn working_map(&self, features: &Features) -> Probabilities {
+        let mut p = predict(&self.stages[0], features);
+        if let Some(stage2) = self.stages.get(1) {
+            let f2 = with_context(features.clone(), &p, &self.context());
+            p = predict(stage2, &f2);
+        }
+        p
+    }
+}
+
+fn predict(forest: &Forest, f: &Features) -> Probabilities {
+    forest
+        .predict(f)
+        .expect("a validated forest matches its own bank")
+}
+
+/// The features of stage 2: the bank's plus the context of the stage-1 maps `p`.
+pub fn with_context(mut f: Features, p: &Probabilities, ac: &AutoContext) -> Features {
+    let (planes, names) = context(p, ac);
+    // Class 0's planes are 1 − class 1's: keep the wall class only.
+    let per = ac.per_class();
+    f.planes.extend(planes.into_iter().skip(per));
+    f.names.extend(names.into_iter().skip(per));
+    f
+}
+
+/// The working size of a `w` × `h` drawing: shrunk so that the longer side is at most `max_side`.
+pub fn working_size(w: u32, h: u32, max_side: u32) -> (u32, u32) {
+    let long = w.max(h);
+    if long <= max_side {
+        return (w, h);
+    }
+    let s = f64::from(max_side) / f64::from(long);
+    let f = |v: u32| ((f64::from(v) * s).round() as u32).max(2);
+    (f(w), f(h))
+}
+
+/// The normalised drawing (ink 0, paper 1: its 1st percentile and 90th percentile stretched
+/// to them, so scans of any contrast and paper tone look alike), shrunk to the working size,
+/// and its features.
+pub fn working_features(grey: &GrayImage, max_side: u32, bank: &FilterBank) -> Features {
+    let (w, h) = grey.dimensions();
+    let ch = Channels::from_gray(&normalise(grey));
+    let (ws, hs) = working_size(w, h, max_side);
+    let work = if (ws, hs) == (w, h) {
+        ch
+    } else {
+        pixelclass::resample::shrink(&ch, ws as usize, hs as usize)
+    };
+    pixelclass::features::compute(&work, bank)
+}
+
+/// The grey stretched so that its 1st percentile is 0 and its 90th is 255.
+pub fn normalise(grey: &GrayImage) -> GrayImage {
+    let mut hist = [0usize; 256];
+    grey.pixels().for_each(|p| hist[p[0] as usize] += 1);
+    let n = grey.len();
+    let at = |q: f64| {
+        let want = (q * n as f64) as usize;
+        let mut seen = 0;
+        (0..256)
+            .find(|&v| {
+                seen += hist[v];
+                seen > want
+            })
+            .unwrap_or(255) as f32
+    };
+    let (lo, hi) = (at(0.01), at(0.90));
+    if hi - lo < 16.0 {
+        return grey.clone(); // a blank or flat sheet: nothing to stretch
+    }
+    let k = 255.0 / (hi - lo);
+    GrayImage::from_fn(grey.width(), grey.height(), |x, y| {
+        let v = (f32::from(grey.get_pixel(x, y)[0]) - lo) * k;
+        image::Luma([v.clamp(0.0, 255.0) as u8])
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use image::Luma;
+
+    #[test]
+    fn normalise_stretches_ink_and_paper_to_the_ends() {
+        // 95 % paper at 200, 5 % ink at 100.
+        let g = GrayImage::from_fn(20, 20, |x, y| {
+            Luma([if (y * 20 + x) % 20 == 0 { 100 } else { 200 }])
+        });
+        let n = normalise(&g);
+        assert_eq!(n.get_pixel(0, 0)[0], 0);
+        assert_eq!(n.get_pixel(1, 0)[0], 255);
+        let flat = GrayImage::from_pixel(5, 5, Luma([240]));
+        assert_eq!(normalise(&flat), flat);
+    }
+
+    #[test]
+    fn working_size_keeps_small_drawings_and_shrinks_large_ones() {
+        assert_eq!(working_size(600, 400, 1200), (600, 400));
+        assert_eq!(working_size(3000, 2000, 1200), (1200, 800));
+    }
+
+    #[test]
+    fn the_shipped_model_reads_and_a_damaged_one_is_refused() {
+        let m = WallInk::shipped().unwrap();
+        assert_eq!(WallInk::from_bytes(&m.to_bytes()).unwrap(), m);
+        assert!(matches!(
+            WallInk::from_bytes(&SHIPPED[..SHIPPED.len() / 2]),
+            Err(ModelError::Decode(_))
+        ));
+        let mut other = m.clone();
+        other.format = FORMAT + 1;
+        assert_eq!(
+            WallInk::from_bytes(&other.to_bytes()),
+            Err(ModelError::Format { found: FORMAT + 1 })
+        );
+        let mut short = m;
+        short.stages.truncate(0);
+        assert!(matches!(
+            WallInk::from_bytes(&short.to_bytes()),
+            Err(ModelError::Invalid(_))
+        ));
+    }
+}
