@@ -60,6 +60,7 @@ pub mod scalebar;
 mod scene;
 mod strokes;
 pub mod synth;
+pub mod synth_styles;
 pub mod thin;
 
 use image::DynamicImage;
