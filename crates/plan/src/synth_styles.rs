@@ -1097,6 +1097,28 @@ mod tests {
     }
 
     #[test]
+    fn synth_styles_degraded_solid_walls_stay_darker_than_paper() {
+        let choice = StyleChoice {
+            walls: Some(WallStyle::Solid),
+            ..Default::default()
+        };
+        for seed in 0..10 {
+            let p = generate_with(seed, 400, 300, &choice);
+            let (mut sum, mut n) = ([0f64; 2], [0f64; 2]);
+            for (t, v) in p.walls.as_raw().iter().zip(p.image.as_raw()) {
+                let k = (*t == 255) as usize;
+                sum[k] += *v as f64;
+                n[k] += 1.0;
+            }
+            let (paper, wall) = (sum[0] / n[0], sum[1] / n[1]);
+            assert!(
+                wall + 60.0 < paper,
+                "seed {seed}: walls {wall:.0}, rest {paper:.0}"
+            );
+        }
+    }
+
+    #[test]
     fn synth_styles_every_style_occurs() {
         let seen: Vec<WallStyle> = (0..40).map(|s| generate(s, 200, 150).style.walls).collect();
         for style in WALL_STYLES {
