@@ -123,13 +123,14 @@ fn draw(seed: u64, width: u32, height: u32, choice: &StyleChoice) -> (Sheet, Sty
         .filter(|&w| w != walls && choice.walls.is_none());
     let lay = layout(&mut rng, width, height, t);
     let mut sheet = Sheet::new(width, height, &lay);
-    render_walls(&mut sheet.img, &lay.main, walls, &mut rng);
-    render_walls(
-        &mut sheet.img,
-        &lay.inner,
-        second.unwrap_or(walls),
-        &mut rng,
-    );
+    match second {
+        None => render_walls(&mut sheet.img, &sheet.truth, walls, &mut rng),
+        Some(other) => {
+            render_walls(&mut sheet.img, &lay.main, walls, &mut rng);
+            render_walls(&mut sheet.img, &lay.inner.minus(&lay.main), other, &mut rng);
+        }
+    }
+
     let clutter = draw_clutter(&mut sheet, &lay, &mut rng);
     if !choice.clean {
         degrade(&mut sheet.img, &mut rng);
@@ -271,6 +272,10 @@ impl Mask {
             |i| m[i] = v,
         );
     }
+    fn minus(&self, o: &Mask) -> Mask {
+        let m = self.m.iter().zip(&o.m).map(|(a, b)| *a && !*b).collect();
+        Mask { m, ..*self }
+    }
     fn or(&self, o: &Mask) -> Mask {
         let m = self.m.iter().zip(&o.m).map(|(a, b)| *a || *b).collect();
         Mask { m, ..*self }
@@ -285,10 +290,11 @@ impl Mask {
     }
 }
 
-/// A room inside walls: where vault ribs and labels go.
+/// A room inside walls: where vault ribs (not in halls) and labels go.
 enum Room {
     Round(P, f64),
     Square(P, f64, f64),
+    Hall(P),
 }
 
 /// The walls of a castle: `main` (curtain, towers, keep, inner ward) and `inner` (buildings,
@@ -306,7 +312,7 @@ struct Layout {
 fn layout(rng: &mut Rng, w: u32, h: u32, t: f64) -> Layout {
     let (wf, hf) = (w as f64, h as f64);
     let centre = (wf * u(rng, 0.45, 0.55), hf * u(rng, 0.45, 0.55));
-    let radius = (wf * u(rng, 0.26, 0.36), hf * u(rng, 0.26, 0.36));
+    let radius = (wf * u(rng, 0.24, 0.32), hf * u(rng, 0.24, 0.32));
     let n = rng.random_range(4..=8);
     let phase = u(rng, 0.0, 2.0 * PI);
     let curtain: Vec<P> = (0..n)
@@ -364,8 +370,9 @@ fn inward(a: P, b: P, c: P) -> P {
 fn add_buildings(rng: &mut Rng, lay: &mut Layout, segs: &mut Vec<(P, P, f64)>) {
     let n = lay.curtain.len();
     let depth = lay.radius.0.min(lay.radius.1);
-    for _ in 0..rng.random_range(1..=4) {
-        let k = rng.random_range(0..n);
+    let first = rng.random_range(0..n);
+    for j in 0..rng.random_range(1..=4.min(n)) {
+        let k = (first + j * 2) % n;
         let (a, b) = (lay.curtain[k], lay.curtain[(k + 1) % n]);
         let nrm = inward(a, b, lay.centre);
         let s0 = u(rng, 0.15, 0.45);
@@ -382,8 +389,7 @@ fn add_buildings(rng: &mut Rng, lay: &mut Layout, segs: &mut Vec<(P, P, f64)>) {
             lay.inner.wall(q, add(q, mul(nrm, d)), tb * 0.8, true);
         }
         let mid = add(lerp(p0, p1, 0.5), mul(nrm, d / 2.0));
-        lay.rooms
-            .push(Room::Square(mid, d / 2.0 - tb, nrm.1.atan2(nrm.0)));
+        lay.rooms.push(Room::Hall(mid));
     }
 }
 
@@ -414,8 +420,10 @@ fn add_doors(rng: &mut Rng, lay: &mut Layout, segs: &[(P, P, f64)]) {
         let g = (t * u(rng, 1.2, 3.0)).max(5.0) / len.max(1.0);
         let s = u(rng, 0.2, 0.8 - g);
         let (p, q) = (lerp(a, b, s), lerp(a, b, s + g));
-        lay.main.wall(p, q, t + 3.0, false);
-        lay.inner.wall(p, q, t + 3.0, false);
+        let n = mul(unit(rot(sub(q, p), PI / 2.0)), t / 2.0 + 2.0);
+        let gap = [add(p, n), add(q, n), sub(q, n), sub(p, n)];
+        lay.main.fill(&gap, false);
+        lay.inner.fill(&gap, false);
     }
 }
 
@@ -759,7 +767,7 @@ fn wobble(rng: &mut Rng) -> Vec<(f64, f64)> {
 
 fn contours(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
     let wob = wobble(rng);
-    let mut f = u(rng, 1.15, 1.3);
+    let mut f = u(rng, 1.3, 1.4);
     for _ in 0..rng.random_range(2..=5) {
         sheet.polyline(&ring(lay, f, &wob), 1.0, 0);
         f += u(rng, 0.08, 0.2);
@@ -769,7 +777,7 @@ fn contours(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
 /// A band of short strokes perpendicular to a curve around the castle (a moat or slope).
 fn hachures(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
     let wob = wobble(rng);
-    let curve = ring(lay, u(rng, 1.12, 1.3), &wob);
+    let curve = ring(lay, u(rng, 1.3, 1.45), &wob);
     let band = lay.radius.0.min(lay.radius.1) * u(rng, 0.08, 0.2);
     let (sp, lw) = (u(rng, 2.5, 6.0), u(rng, 1.0, 1.6));
     let mut k = 0;
@@ -811,6 +819,7 @@ fn vault_ribs(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
         let (c, r, a0) = match room {
             Room::Round(c, r) => (*c, *r, u(rng, 0.0, PI)),
             Room::Square(c, r, a) => (*c, *r * std::f64::consts::SQRT_2, a + PI / 4.0),
+            Room::Hall(_) => continue,
         };
         let n = rng.random_range(2..=4);
         for k in 0..n {
@@ -843,7 +852,7 @@ fn dimension_lines(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
 
 fn letters(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
     let rooms = lay.rooms.iter().map(|r| match r {
-        Room::Round(c, _) | Room::Square(c, _, _) => *c,
+        Room::Round(c, _) | Room::Square(c, _, _) | Room::Hall(c) => *c,
     });
     let spots: Vec<P> = rooms
         .collect::<Vec<P>>()
@@ -874,7 +883,7 @@ fn scale_bar(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
     let tick = (lay.t * 1.2).clamp(4.0, 14.0);
     sheet.line(at, add(at, (n as f64 * step, 0.0)), 1.0, 0);
     let filled = rng.random_bool(0.5);
-    let th = letter_height(rng, lay) * 0.7;
+    let th = (letter_height(rng, lay) * 0.7).min(step * 0.3).max(5.0);
     for k in 0..=n {
         let x = add(at, (k as f64 * step, 0.0));
         sheet.line(x, add(x, (0.0, -tick)), 1.0, 0);
@@ -922,44 +931,14 @@ fn title(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
 
 /// Paper tone and texture, grey ink, stains, blur, quantisation and a JPEG round trip.
 fn degrade(img: &mut GrayImage, rng: &mut Rng) {
-    let (w, h) = (img.width() as f64, img.height() as f64);
     let (paper, ink) = (u(rng, 195.0, 250.0), u(rng, 0.0, 90.0));
-    let waves: Vec<(f64, f64, f64, f64)> = (0..3)
-        .map(|_| {
-            (
-                u(rng, 0.5, 3.0),
-                u(rng, 0.5, 3.0),
-                u(rng, 0.0, 6.3),
-                u(rng, 0.0, 8.0),
-            )
-        })
-        .collect();
-    let stains: Vec<(P, f64, f64)> = (0..rng.random_range(0..4))
-        .map(|_| {
-            (
-                (u(rng, 0.0, w), u(rng, 0.0, h)),
-                u(rng, 5.0, w.min(h) * 0.1),
-                u(rng, 10.0, 40.0),
-            )
-        })
-        .collect();
-    let noise = u(rng, 0.0, 12.0);
-    let iw = img.width() as usize;
+    let tone = paper_tone(rng, img.width() as usize, img.height() as usize);
+    let (noise, key) = (u(rng, 0.0, 12.0), rng.random::<u64>());
     for (i, px) in img.as_mut().iter_mut().enumerate() {
-        let (x, y) = ((i % iw) as f64 / w, (i / iw) as f64 / h);
-        let tone: f64 = waves
-            .iter()
-            .map(|(fx, fy, ph, a)| a * (2.0 * PI * (fx * x + fy * y) + ph).sin())
-            .sum();
-        let stain: f64 = stains
-            .iter()
-            .map(|((sx, sy), r, d)| {
-                d * (-((x * w - sx).powi(2) + (y * h - sy).powi(2)) / (r * r)).exp()
-            })
-            .sum();
-        let n =
-            (rng.random::<f64>() + rng.random::<f64>() + rng.random::<f64>() - 1.5) * 2.0 * noise;
-        let v = ink + (paper + tone - ink) * *px as f64 / 255.0 - stain + n;
+        let h = splitmix(key ^ i as u64);
+        let sum: u64 = (0..3).map(|k| (h >> (k * 21)) & 0x1f_ffff).sum();
+        let n = (sum as f64 / 0x1f_ffff as f64 - 1.5) * 2.0 * noise;
+        let v = ink + (paper + tone[i] as f64 - ink) * *px as f64 / 255.0 + n;
         *px = v.clamp(0.0, 255.0) as u8;
     }
     let sigma = u(rng, 0.0, 1.5) as f32;
@@ -974,6 +953,51 @@ fn degrade(img: &mut GrayImage, rng: &mut Rng) {
     if rng.random_bool(0.5) {
         jpeg(img, rng.random_range(30..=90));
     }
+}
+
+/// Low-frequency brightness variation (three plane waves) less a few soft stains.
+fn paper_tone(rng: &mut Rng, w: usize, h: usize) -> Vec<f32> {
+    let mut tone = vec![0f32; w * h];
+    for _ in 0..3 {
+        let (fx, fy) = (u(rng, 0.5, 3.0) * 2.0 * PI, u(rng, 0.5, 3.0) * 2.0 * PI);
+        let (ph, a) = (u(rng, 0.0, 2.0 * PI), u(rng, 0.0, 8.0) as f32);
+        let xs: Vec<(f32, f32)> = (0..w).map(|x| sc(fx * x as f64 / w as f64)).collect();
+        for y in 0..h {
+            let (sy, cy) = sc(fy * y as f64 / h as f64 + ph);
+            for (t, (sx, cx)) in tone[y * w..(y + 1) * w].iter_mut().zip(&xs) {
+                *t += a * (sx * cy + cx * sy);
+            }
+        }
+    }
+    for _ in 0..rng.random_range(0..4) {
+        let c = (u(rng, 0.0, w as f64), u(rng, 0.0, h as f64));
+        let (r, d) = (u(rng, 5.0, w.min(h) as f64 * 0.1), u(rng, 10.0, 40.0));
+        let stain = |p: P| (-((p.0 - c.0).powi(2) + (p.1 - c.1).powi(2)) / (r * r)).exp();
+        let (lo, hi) = (sub(c, (3.0 * r, 3.0 * r)), add(c, (3.0 * r, 3.0 * r)));
+        scan(
+            w,
+            h,
+            lo,
+            hi,
+            |_| true,
+            |i| {
+                let p = ((i % w) as f64, (i / w) as f64);
+                tone[i] -= (d * stain(p)) as f32;
+            },
+        );
+    }
+    tone
+}
+
+fn sc(a: f64) -> (f32, f32) {
+    (a.sin() as f32, a.cos() as f32)
+}
+
+fn splitmix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 fn jpeg(img: &mut GrayImage, quality: u8) {
@@ -1069,6 +1093,28 @@ mod tests {
             let light = truth.iter().filter(|v| **v > 200).count() as f64 / truth.len() as f64;
             assert!(light > 0.3, "seed {seed}: light share {light}");
             assert!(light < 0.9, "seed {seed}: light share {light}");
+        }
+    }
+
+    #[test]
+    fn synth_styles_degraded_solid_walls_stay_darker_than_paper() {
+        let choice = StyleChoice {
+            walls: Some(WallStyle::Solid),
+            ..Default::default()
+        };
+        for seed in 0..10 {
+            let p = generate_with(seed, 400, 300, &choice);
+            let (mut sum, mut n) = ([0f64; 2], [0f64; 2]);
+            for (t, v) in p.walls.as_raw().iter().zip(p.image.as_raw()) {
+                let k = (*t == 255) as usize;
+                sum[k] += *v as f64;
+                n[k] += 1.0;
+            }
+            let (paper, wall) = (sum[0] / n[0], sum[1] / n[1]);
+            assert!(
+                wall + 60.0 < paper,
+                "seed {seed}: walls {wall:.0}, rest {paper:.0}"
+            );
         }
     }
 
