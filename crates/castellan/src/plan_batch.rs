@@ -215,7 +215,10 @@ fn parse_and_write(
     let doc = plan::output::plan_json(&parsed, metres_per_pixel);
     let labels_path = out("labels.png");
     let overlay_path = out("overlay.png");
-    let over = plan::output::overlay(&parsed, &img.to_luma8());
+    let walls_path = out("walls.png");
+    let grey = img.to_luma8();
+    let over = plan::output::overlay(&parsed, &grey);
+    let walls = plan::output::walls_overlay(&parsed, &grey);
     writer.write_group(vec![
         (out("plan.json"), serde_json::to_vec_pretty(&doc)?),
         (
@@ -223,6 +226,7 @@ fn parse_and_write(
             png(&plan::output::labels_image(&parsed), &labels_path)?,
         ),
         (overlay_path.clone(), png(&over, &overlay_path)?),
+        (walls_path.clone(), png(&walls, &walls_path)?),
         (out("svg"), plan::output::svg(&parsed).into_bytes()),
     ])?;
 

@@ -21,6 +21,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         hachures: args.hachures,
         dashes: !args.no_dashes,
         inner_ward_towers: !args.no_inner_towers,
+        ink: args.ink,
         ..Default::default()
     };
     let image = match (&args.batch, &args.image) {
@@ -52,6 +53,10 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     }
     if let Some(path) = &args.overlay {
         let over = plan::output::overlay(&parsed, &img.to_luma8());
+        outputs.add(path, png(&over, path)?);
+    }
+    if let Some(path) = &args.walls {
+        let over = plan::output::walls_overlay(&parsed, &img.to_luma8());
         outputs.add(path, png(&over, path)?);
     }
     if let Some(path) = &args.svg {
@@ -105,9 +110,9 @@ pub struct PlanArgs {
     #[arg(required_unless_present = "batch")]
     pub image: Option<PathBuf>,
     /// Parse every drawing in this folder instead (in parallel); `-o` is then the output
-    /// folder, which receives NAME.plan.json, NAME.labels.png, NAME.overlay.png, NAME.svg
+    /// folder, which receives NAME.plan.json, NAME.labels.png, NAME.overlay.png, NAME.walls.png, NAME.svg
     /// per drawing and summary.csv (one row per file, failures with their reason).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["image", "labels", "svg", "model", "overlay"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["image", "labels", "svg", "model", "overlay", "walls"])]
     pub batch: Option<PathBuf>,
     /// The parsed plan: vertices, labelled edges with fits, labelled faces with shapes
     /// (with --batch: the output folder).
@@ -125,6 +130,15 @@ pub struct PlanArgs {
     /// The drawing coloured by label.
     #[arg(long, value_name = "OVERLAY.png")]
     pub overlay: Option<PathBuf>,
+    /// The walls as read (red) over the drawing (grey): the learned wall ink, or the rules'
+    /// threshold, after §5.1.2's open/close.
+    #[arg(long, value_name = "WALLS.png")]
+    pub walls: Option<PathBuf>,
+    /// How the walls are read: `learned` (a wall-ink model trained on synthetic and painted
+    /// plans, issue 26) or `rules` (§5.1.2's threshold with the clean-up steps below, which
+    /// act on it only; see docs/plan.md).
+    #[arg(long, default_value = "learned", value_parser = crate::flags::ink)]
+    pub ink: plan::ink::InkMethod,
     /// Drawing scale in metres per pixel; the model comes out in metres.
     #[arg(long = "scale", value_name = "METRES_PER_PIXEL", value_parser = crate::flags::metres_per_pixel)]
     pub metres_per_pixel: Option<f64>,
@@ -236,6 +250,17 @@ mod flag_tests {
             "{e}"
         );
         assert!(plan_args(&["--scale", "1e-9"]).is_err());
+    }
+
+    #[test]
+    fn plan_ink_is_learned_or_rules_and_walls_names_a_picture() {
+        use plan::ink::InkMethod;
+        let a = plan_args(&[]).unwrap();
+        assert_eq!((a.ink, a.walls), (InkMethod::Learned, None));
+        let a = plan_args(&["--ink", "rules", "--walls", "w.png"]).unwrap();
+        assert_eq!((a.ink, a.walls), (InkMethod::Rules, Some(PathBuf::from("w.png"))));
+        let e = plan_args(&["--ink", "otsu"]).unwrap_err().to_string();
+        assert!(e.contains("'otsu' is not a way to read walls"), "{e}");
     }
 
     #[test]

@@ -148,7 +148,7 @@ fn batch_parses_the_good_drawing_and_reports_the_two_bad_files() {
     assert_eq!(&rows[3][..2], &["notes.txt", "false"]);
     assert!(rows[3][7].contains("not a readable image"), "{csv}");
 
-    for suffix in ["plan.json", "labels.png", "overlay.png", "svg"] {
+    for suffix in ["plan.json", "labels.png", "overlay.png", "walls.png", "svg"] {
         assert!(out.join(format!("castle.{suffix}")).exists(), "{suffix}");
         assert!(!out.join(format!("blank.{suffix}")).exists(), "{suffix}");
     }

@@ -126,6 +126,8 @@ pub struct PlanStage {
     pub parsed: ParsedPlan,
     /// The drawing coloured by label (`overlays/plan_labels.png`).
     pub overlay: Overlay,
+    /// The walls as read, over the drawing (`overlays/plan_walls.png`).
+    pub walls: Overlay,
     /// The vectorised walls (`plan.svg`).
     pub svg: String,
 }
@@ -139,15 +141,29 @@ pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, Pi
             entry,
             message: e.to_string(),
         })?;
+    let grey = image.to_luma8();
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
         caption: Some("Plan labels (ch. 5)".into()),
-        picture: Picture::Rgb(plan::output::overlay(&parsed, &image.to_luma8())),
+        picture: Picture::Rgb(plan::output::overlay(&parsed, &grey)),
+    };
+    let how = match project.plan_options().ink {
+        plan::ink::InkMethod::Learned => "learned wall ink",
+        plan::ink::InkMethod::Rules => "threshold and clean-up rules",
+    };
+    let walls = Overlay {
+        name: "overlays/plan_walls.png".into(),
+        caption: Some(format!(
+            "Plan walls ({how}, §5.1.2) — {}",
+            plan::output::WALLS_LEGEND
+        )),
+        picture: Picture::Rgb(plan::output::walls_overlay(&parsed, &grey)),
     };
     let svg = plan::output::svg(&parsed);
     Ok(PlanStage {
         parsed,
         overlay,
+        walls,
         svg,
     })
 }
@@ -377,6 +393,7 @@ pub fn reconstruct(
     let t = Instant::now();
     let plan_stage = parse_plan(project, files)?;
     stages.push((Stage::Plan, ms(t)));
+    overlays.push(plan_stage.walls);
     overlays.push(plan_stage.overlay);
     progress(Progress::Step);
 

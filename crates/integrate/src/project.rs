@@ -26,6 +26,14 @@ pub struct Project {
     /// before parsing (`castellan plan --hatching`); off when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hatching: Option<bool>,
+    /// How the plan's walls are read: `learned` (the default when absent: the learned wall
+    /// ink) or `rules` (§5.1.2's threshold and the clean-up rules; `castellan plan --ink`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ink: Option<plan::ink::InkMethod>,
+    /// The user's "wall" / "not wall" strokes on the plan drawing (its pixels), which refine
+    /// the learned wall ink for this drawing (`castellan serve`'s plan step).
+    #[serde(default, rename = "ink_stroke", skip_serializing_if = "Vec::is_empty")]
+    pub ink_strokes: Vec<plan::ink::refine::InkStroke>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
@@ -144,6 +152,9 @@ impl Project {
         plan::Options {
             thin_lines: self.thin_lines.unwrap_or(0.0),
             hatching: self.hatching.unwrap_or(false),
+            ink: self.ink.unwrap_or_default(),
+            ink_strokes: self.ink_strokes.clone(),
+            seed: self.seed.unwrap_or(0),
             ..Default::default()
         }
     }
@@ -205,6 +216,10 @@ impl Project {
             return bad(format!(
                 "thin_lines = {t}: a fraction of the wall thickness, from 0 to 1"
             ));
+        }
+        // The drawing's size is checked when it is parsed; here, everything else.
+        if let Err(e) = plan::ink::refine::check(&self.ink_strokes, u32::MAX, u32::MAX) {
+            return bad(format!("[[ink_stroke]]: {e}"));
         }
         let mut images: Vec<&str> = self.facades.iter().map(|f| f.image.as_str()).collect();
         images.extend(self.gothics.iter().map(|g| g.image.as_str()));
@@ -383,6 +398,30 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("thin_lines = 2"), "{e}");
+    }
+
+    #[test]
+    fn the_ink_method_and_the_users_ink_strokes_reach_the_plan_options() {
+        use plan::ink::InkMethod;
+        assert_eq!(Project::from_toml(GOOD).unwrap().plan_options().ink, InkMethod::Learned);
+        let rules = GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"rules\"");
+        assert_eq!(Project::from_toml(&rules).unwrap().plan_options().ink, InkMethod::Rules);
+        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"otsu\""))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("otsu"), "{e}");
+        let stroked = format!(
+            "{GOOD}\n[[ink_stroke]]\nwall = false\nradius = 3\npoints = [[10, 12], [40, 12]]\n"
+        );
+        let p = Project::from_toml(&stroked).unwrap();
+        assert_eq!(p.plan_options().ink_strokes.len(), 1);
+        assert!(!p.plan_options().ink_strokes[0].wall);
+        // Saved and read again, the strokes survive.
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
+        let e = Project::from_toml(&stroked.replace("radius = 3", "radius = -1"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("[[ink_stroke]]") && e.contains("ink stroke 0"), "{e}");
     }
 
     /// Issue 19: `scale = 1e300` once surfaced as an internal error of the generated program.

@@ -2,7 +2,7 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--no-inner-towers]
-//! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--overlays DIR] [--all] [--closed]`; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! [--no-drop-marks] [--no-bulge-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--overlays DIR] [--all] [--closed]`; `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 #[path = "../tests/common/mod.rs"]
@@ -17,9 +17,14 @@ fn main() {
     let Some(data) = common::castle_drawings() else {
         return;
     };
-    let text = std::fs::read_to_string(root.join("tests/data/devset.json")).unwrap();
-    let set = DevSet::from_json(&text).unwrap();
     let args: Vec<String> = std::env::args().collect();
+    let file = if args.iter().any(|a| a == "--more") {
+        "tests/data/devset_more.json"
+    } else {
+        "tests/data/devset.json"
+    };
+    let text = std::fs::read_to_string(root.join(file)).unwrap();
+    let set = DevSet::from_json(&text).unwrap();
     let opts = plan::Options {
         close_gaps: !args.iter().any(|a| a == "--no-close-gaps"),
         inner_ward_towers: !args.iter().any(|a| a == "--no-inner-towers"),
@@ -30,6 +35,11 @@ fn main() {
         hatching: args.iter().any(|a| a == "--hatching"),
         hachures: args.iter().any(|a| a == "--hachures"),
         dashes: !args.iter().any(|a| a == "--no-dashes"),
+        ink: if args.iter().any(|a| a == "--rules") {
+            plan::ink::InkMethod::Rules
+        } else {
+            plan::ink::InkMethod::Learned
+        },
         ..Default::default()
     };
     let mut scores = Vec::new();

@@ -13,8 +13,8 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use plan::eval::{DevPlan, DevSet, Totals, score};
-use plan::ink::Ink;
 use plan::ink::train::{Sheet, TrainParams, confusion, source_of, train};
+use plan::ink::{InkMethod, WallInk};
 
 fn main() {
     let mut seed = 1u64;
@@ -94,8 +94,8 @@ fn main() {
             .filter(|(p, _)| &source_of(&p.book) == source)
             .collect();
         let (l, r) = (
-            points(&data, &plans, Ink::Learned(model.clone())),
-            points(&data, &plans, Ink::Rules),
+            points(&data, &plans, Some(model.clone())),
+            points(&data, &plans, None),
         );
         println!(
             "| {} | {} | {} / {} | {} | {} / {} of {} | {} / {} | ({:.0} s)",
@@ -169,9 +169,19 @@ fn otsu_map(grey: &image::GrayImage) -> Vec<f32> {
         .collect()
 }
 
-fn points(data: &std::path::Path, plans: &[&(DevPlan, u32)], ink: Ink) -> Totals {
+/// Points and towers with the learned ink of `model`, or with the rule chain (`None`).
+fn points(
+    data: &std::path::Path,
+    plans: &[&(DevPlan, u32)],
+    model: Option<Arc<WallInk>>,
+) -> Totals {
     let opts = plan::Options {
-        ink,
+        ink: if model.is_some() {
+            InkMethod::Learned
+        } else {
+            InkMethod::Rules
+        },
+        ink_model: model,
         ..Default::default()
     };
     let scores: Vec<_> = plans

@@ -124,7 +124,14 @@ pub struct Options {
     /// Where the wall mask comes from: the learned wall ink (default) or §5.1.2's threshold
     /// with the clean-up steps above (`hatching`, `hachures`, `dashes`, `thin_lines` act on
     /// that chain only).
-    pub ink: ink::Ink,
+    pub ink: ink::InkMethod,
+    /// The learned ink's model; `None`: the one that ships ([`ink::shipped`]).
+    pub ink_model: Option<std::sync::Arc<ink::WallInk>>,
+    /// The user's "wall" / "not wall" strokes, which refine the learned ink for this drawing
+    /// ([`ink::refine`]); drawing pixels.
+    pub ink_strokes: Vec<ink::refine::InkStroke>,
+    /// Seed of the refinement's forest.
+    pub seed: u64,
 }
 
 impl Default for Options {
@@ -143,7 +150,10 @@ impl Default for Options {
             hatching: false,
             hachures: false,
             dashes: true,
-            ink: ink::Ink::shipped(),
+            ink: ink::InkMethod::Learned,
+            ink_model: None,
+            ink_strokes: Vec::new(),
+            seed: 0,
         }
     }
 }
@@ -159,6 +169,12 @@ pub enum PlanError {
         "no walls found: after thresholding at grey level {0} and removing specks and thin lines, nothing of the drawing is left (a blank page?)"
     )]
     NoWalls(u8),
+    #[error(
+        "no walls found: the learned wall ink sees no wall on the drawing (a blank page? `--ink rules` thresholds the ink instead)"
+    )]
+    NoLearnedWalls,
+    #[error("{0}")]
+    Strokes(ink::refine::StrokeError),
 }
 
 /// A wall of the simplified graph.
@@ -240,9 +256,27 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     };
     let scale_bar = scalebar::find(&grey);
     // The learned ink reads the drawing at its own resolution; its map is enlarged with it.
-    let learned = match &opts.ink {
-        ink::Ink::Learned(model) => Some(learned_mask(model, &grey, w * k, h * k)),
-        ink::Ink::Rules => None,
+    let learned = match opts.ink {
+        ink::InkMethod::Learned => {
+            ink::refine::check(&opts.ink_strokes, w, h).map_err(PlanError::Strokes)?;
+            let model = opts.ink_model.clone().unwrap_or_else(ink::shipped);
+            let p = ink::refine::wall_probability(
+                &model,
+                &grey,
+                &opts.ink_strokes,
+                opts.seed,
+                w * k,
+                h * k,
+            );
+            Some(image::GrayImage::from_fn(w * k, h * k, |x, y| {
+                image::Luma([if p[(y * w * k + x) as usize] > ink::WALL_THRESHOLD {
+                    255
+                } else {
+                    0
+                }])
+            }))
+        }
+        ink::InkMethod::Rules => None,
     };
     let parsed = if k == 1 {
         parse_grey(&grey, learned, opts)?
@@ -367,18 +401,6 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
     }
 }
 
-/// The model's wall mask (P(wall) > 0.5, 255 = wall) of `grey` at `w` × `h`.
-fn learned_mask(model: &ink::WallInk, grey: &image::GrayImage, w: u32, h: u32) -> image::GrayImage {
-    let p = model.wall_probability(grey, w, h);
-    image::GrayImage::from_fn(w, h, |x, y| {
-        image::Luma([if p[(y * w + x) as usize] > 0.5 {
-            255
-        } else {
-            0
-        }])
-    })
-}
-
 /// Parses `grey` (already enlarged if it was small); `learned` is the learned wall mask at
 /// its size, `None` for §5.1.2's threshold and the clean-up chain.
 fn parse_grey(
@@ -393,12 +415,17 @@ fn parse_grey(
         hachures: opts.hachures,
         dashes: opts.dashes,
     };
+    let is_learned = learned.is_some();
     let (mut bin, mut pre) = match learned {
         Some(mask) => binarize::preprocess_learned(mask, opts.min_region),
         None => binarize::preprocess_clean(grey, opts.min_region, &cleanup),
     };
     if pre.wall_pixels == 0 {
-        return Err(PlanError::NoWalls(pre.threshold));
+        return Err(if is_learned {
+            PlanError::NoLearnedWalls
+        } else {
+            PlanError::NoWalls(pre.threshold)
+        });
     }
     if opts.close_gaps {
         // Radius T / 3 for the typical wall thickness T, so gaps up to about two thirds of a

@@ -82,6 +82,27 @@ pub fn overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
     img
 }
 
+/// Colour of the walls in [`walls_overlay`].
+pub const WALL_INK_COLOUR: [u8; 3] = [220, 30, 30];
+
+/// The walls chapter 5 read (the wall mask after §5.1.2, from the learned wall ink or the
+/// rules) in [`WALL_INK_COLOUR`] over the drawing in grey: what the user judges and strokes
+/// against (legend: [`WALLS_LEGEND`]).
+pub fn walls_overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
+    RgbImage::from_fn(p.width, p.height, |x, y| {
+        let g = f64::from(grey.get_pixel(x, y)[0]);
+        if p.walls.data[(y * p.width + x) as usize] != 0 {
+            Rgb(WALL_INK_COLOUR.map(|v| (0.75 * f64::from(v) + 0.25 * g).round() as u8))
+        } else {
+            let v = (0.55 * g + 0.45 * 255.0).round() as u8;
+            Rgb([v, v, v])
+        }
+    })
+}
+
+/// The legend of [`walls_overlay`].
+pub const WALLS_LEGEND: &str = "red: wall as read (learned wall ink or rules, then §5.1.2's open/close and specks); grey: the drawing, not wall";
+
 /// Colour of the frame drawn round a found scale bar (no label uses it).
 pub const SCALE_BAR_COLOUR: [u8; 3] = [230, 0, 200];
 

@@ -7,10 +7,17 @@ use plan::fit::Fit;
 use plan::label::Label;
 use plan::synth::{Canvas, castle};
 
-fn parse(img: &GrayImage, thin_lines: f64) -> plan::ParsedPlan {
+/// With the rule chain (the thin-lines step is one of its clean-up steps), or with the
+/// learned wall ink when `thin_lines` is `None`.
+fn parse(img: &GrayImage, thin_lines: Option<f64>) -> plan::ParsedPlan {
     let opts = plan::Options {
         upsample_below: 0,
-        thin_lines,
+        thin_lines: thin_lines.unwrap_or(0.0),
+        ink: if thin_lines.is_some() {
+            plan::ink::InkMethod::Rules
+        } else {
+            plan::ink::InkMethod::Learned
+        },
         ..Default::default()
     };
     plan::parse(&DynamicImage::ImageLuma8(img.clone()), &opts).unwrap()
@@ -44,8 +51,8 @@ fn ribbed_castle() -> GrayImage {
 #[test]
 fn vault_ribs_split_round_tower_rooms_unless_thin_lines_are_removed() {
     let img = ribbed_castle();
-    let kept = parse(&img, 0.0);
-    let removed = parse(&img, plan::Options::default().thin_lines.max(0.25));
+    let kept = parse(&img, Some(0.0));
+    let removed = parse(&img, Some(plan::Options::default().thin_lines.max(0.25)));
     assert!(
         round_tower_rooms(&kept) < 4,
         "with ribs kept: {} round tower rooms",

@@ -12,6 +12,7 @@ mod edit_tests;
 #[cfg(test)]
 mod fuzz_tests;
 mod guard;
+mod ink;
 #[cfg(test)]
 mod guard_tests;
 mod lines;
@@ -138,6 +139,7 @@ pub fn router(app: Arc<app::App>) -> Router {
         .route("/api/plan", post(stages::plan))
         .route("/api/plan/binary", get(clean::binary))
         .route("/api/plan/cleaning", put(clean::save))
+        .route("/api/plan/ink", put(ink::save))
         .route("/api/facades/{name}/rectify", post(stages::rectify))
         .route("/api/facades/{name}/training", put(stages::training))
         .route(

@@ -107,7 +107,11 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
             files.push(fresh_cleaning(&name));
         }
         match (kind.as_str(), project.as_mut()) {
-            ("plan", Some(p)) => p.plan = name.clone(),
+            ("plan", Some(p)) => {
+                // Strokes taught on the old drawing mean nothing on a new one.
+                p.plan = name.clone();
+                p.ink_strokes.clear();
+            }
             ("plan", None) => {
                 project = Some(Project {
                     plan: name.clone(),
@@ -115,6 +119,8 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     scale_bar_metres: None,
                     thin_lines: None,
                     hatching: None,
+                    ink: None,
+                    ink_strokes: vec![],
                     seed: None,
                     facades: vec![],
                     gothics: vec![],

@@ -62,7 +62,8 @@ fn save(app: &App, name: &str, bytes: Vec<u8>) -> Result<(), ApiError> {
         .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
 }
 
-/// POST /api/plan: the plan stage (ch. 5) → label overlay, as `reconstruct` makes it.
+/// POST /api/plan: the plan stage (ch. 5) → label and wall overlays, as `reconstruct` makes
+/// them.
 pub async fn plan(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "plan", |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
@@ -70,9 +71,13 @@ pub async fn plan(State(app): State<Arc<App>>) -> Reply {
         let stage = pipeline::parse_plan(&p, &app.store)
             .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
         let overlay = write_overlay(app, &stage.overlay)?;
+        let walls = write_overlay(app, &stage.walls)?;
         let parsed = &stage.parsed;
         Ok(Json(json!({
             "overlay": file_url(&overlay),
+            "walls": file_url(&walls),
+            "ink": p.ink.unwrap_or_default(),
+            "ink_strokes": p.ink_strokes.len(),
             "width": parsed.width, "height": parsed.height,
             "faces": parsed.faces.len(), "edges": parsed.edges.len(),
             "ms": t.elapsed().as_millis(),

@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
 const state = {
   project: null, training: {}, facade: null, photos: {}, pending: null, corr: [],
-  strokes: [], lines: { horizontal: [], vertical: [] }, version: null,
+  strokes: [], inkStrokes: [], lines: { horizontal: [], vertical: [] }, version: null,
 };
 
 function status(text, error = false) {
@@ -149,8 +149,10 @@ let painting = null;
 function drawStrokes(ctx) {
   ctx.lineCap = 'round';
   ctx.lineJoin = 'round';
-  for (const s of state.strokes) {
-    const colour = s.ink ? '#000' : '#fff';
+  // Cleaning strokes paint ink or paper; teaching strokes (the wall ink's) show in colour.
+  const teach = state.inkStrokes.map((s) => ({ ...s, colour: s.wall ? 'rgba(220,30,30,0.6)' : 'rgba(30,90,230,0.6)' }));
+  for (const s of state.strokes.concat(teach)) {
+    const colour = s.colour || (s.ink ? '#000' : '#fff');
     ctx.strokeStyle = colour;
     ctx.fillStyle = colour;
     ctx.lineWidth = 2 * s.radius;
@@ -185,10 +187,21 @@ async function showPlan() {
 const brushSize = () => Number($('brush-size').value);
 $('brush-size').addEventListener('input', () => { $('brush-size-value').value = String(brushSize()); });
 
+function showInkInfo(note) {
+  $('ink-info').dataset.strokes = String(state.inkStrokes.length);
+  $('ink-info').textContent = `${state.inkStrokes.length} wall-ink strokes (${note})`;
+}
+
 $('plan-canvas').addEventListener('mousedown', (ev) => {
-  const ink = document.querySelector('input[name=brush]:checked').value === 'ink';
-  painting = { ink, radius: brushSize() / 2, points: [toImagePixels($('plan-canvas'), ev)] };
-  state.strokes.push(painting);
+  const brush = document.querySelector('input[name=brush]:checked').value;
+  const points = [toImagePixels($('plan-canvas'), ev)];
+  if (brush === 'wall' || brush === 'notwall') {
+    painting = { wall: brush === 'wall', radius: brushSize() / 2, points };
+    state.inkStrokes.push(painting);
+  } else {
+    painting = { ink: brush === 'ink', radius: brushSize() / 2, points };
+    state.strokes.push(painting);
+  }
   redrawPlan();
 });
 $('plan-canvas').addEventListener('mousemove', (ev) => {
@@ -202,8 +215,22 @@ $('plan-canvas').addEventListener('mousemove', (ev) => {
 window.addEventListener('mouseup', () => {
   if (!painting) return;
   painting.points = painting.points.map(([x, y]) => [Math.round(x * 10) / 10, Math.round(y * 10) / 10]);
+  if ('wall' in painting) showInkInfo('unsaved'); else showStrokeCount('unsaved');
   painting = null;
-  showStrokeCount('unsaved');
+});
+
+$('ink-undo').addEventListener('click', () => {
+  state.inkStrokes.pop();
+  redrawPlan();
+  showInkInfo('unsaved');
+});
+
+$('ink-save').addEventListener('click', async () => {
+  const body = { ink: $('ink-method').value, strokes: state.inkStrokes };
+  const r = await step('Saving the wall-ink strokes', () => api('PUT', '/api/plan/ink', body));
+  if (!r) return;
+  showInkInfo(`saved, walls read by ${r.ink}`);
+  await parsePlan();
 });
 
 $('clean-undo').addEventListener('click', () => {
@@ -223,6 +250,7 @@ async function parsePlan() {
   if (!r) return;
   $('plan-info').textContent = `${r.faces} regions, ${r.edges} edges in ${r.ms} ms`;
   $('plan-info').dataset.faces = String(r.faces);
+  await showOverlay('plan-walls', r.walls);
   await showOverlay('plan-overlay', r.overlay);
   markDone('plan');
 }
@@ -660,6 +688,9 @@ async function refresh() {
   state.corr = (p.project && p.project.correspondence) || [];
   state.cleaning = p.cleaning;
   state.strokes = (p.cleaning && p.cleaning.strokes) || [];
+  state.inkStrokes = (p.project && p.project.ink_stroke) || [];
+  $('ink-method').value = (p.project && p.project.ink) || 'learned';
+  if (p.project) showInkInfo('saved');
   const select = $('facade-select');
   const facades = (p.project && p.project.facade) || [];
   select.replaceChildren(...facades.map((f) => new Option(f.image, f.image)));

@@ -21,9 +21,8 @@ pub struct WallInk {
     pub format: u32,
     /// Features of the normalised grey drawing at the working resolution.
     pub bank: FilterBank,
-    /// Drawings whose longer side exceeds this are shrunk to it (area averaging) before the
-    /// features; the maps are enlarged back bilinearly.
-    pub max_side: u32,
+    /// The resolution the features are computed at.
+    pub working: Working,
     /// σ (working pixels) of the stage-1 wall map given to stage 2; empty: one stage.
     pub context_sigmas: Vec<f32>,
     /// Stage 1, then stage 2 if `context_sigmas` is not empty; class 1 is wall.
@@ -56,12 +55,12 @@ impl WallInk {
             return Err(ModelError::Format { found: m.format });
         }
         let want = if m.context_sigmas.is_empty() { 1 } else { 2 };
-        if m.stages.len() != want || m.max_side < 16 || m.bank.sigmas.is_empty() {
+        if m.stages.len() != want || m.working.max_side < 16 || m.bank.sigmas.is_empty() {
             return Err(ModelError::Invalid(format!(
                 "{} stages for {} context scales, working side {}",
                 m.stages.len(),
                 m.context_sigmas.len(),
-                m.max_side
+                m.working.max_side
             )));
         }
         let dim1 = m.bank.dim(1);
@@ -100,7 +99,7 @@ impl WallInk {
     /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
     /// multiple of it).
     pub fn wall_probability(&self, grey: &GrayImage, out_w: u32, out_h: u32) -> Vec<f32> {
-        let features = working_features(grey, self.max_side, &self.bank);
+        let features = working_features(grey, &self.working, &self.bank);
         let p = self.working_map(&features);
         pixelclass::resample::enlarge(&p, out_w as usize, out_h as usize).class_map(1)
     }
@@ -132,30 +131,57 @@ pub fn with_context(mut f: Features, p: &Probabilities, ac: &AutoContext) -> Fea
     f
 }
 
-/// The working size of a `w` × `h` drawing: shrunk so that the longer side is at most `max_side`.
-pub fn working_size(w: u32, h: u32, max_side: u32) -> (u32, u32) {
+/// The resolution the wall ink works at, the same in training and in use: drawings whose
+/// longer side is under `enlarge_below` are enlarged (bilinear, by an integer factor of at
+/// most 2, as the plan parser enlarges small drawings: [`crate::Options::upsample_below`]),
+/// those over `max_side` shrunk (area averaging); the maps are resampled to the size asked
+/// for. The default enlarges nothing: trained and used at ×2 below 1000 px, the model read
+/// fewer points right on both development sets (120 / 97 against 123 / 113 of 169 / 159) in
+/// twice the time (median 2.0 s against 0.9 s per drawing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Working {
+    pub enlarge_below: u32,
+    pub max_side: u32,
+}
+
+impl Default for Working {
+    fn default() -> Self {
+        Working {
+            enlarge_below: 0,
+            max_side: 1200,
+        }
+    }
+}
+
+/// The working size of a `w` × `h` drawing ([`Working`]).
+pub fn working_size(w: u32, h: u32, working: &Working) -> (u32, u32) {
     let long = w.max(h);
-    if long <= max_side {
+    if long < working.enlarge_below {
+        let k = working.enlarge_below.div_ceil(long.max(1)).min(2);
+        return (w * k, h * k);
+    }
+    if long <= working.max_side {
         return (w, h);
     }
-    let s = f64::from(max_side) / f64::from(long);
+    let s = f64::from(working.max_side) / f64::from(long);
     let f = |v: u32| ((f64::from(v) * s).round() as u32).max(2);
     (f(w), f(h))
 }
 
-/// The normalised drawing (ink 0, paper 1: its 1st percentile and 90th percentile stretched
-/// to them, so scans of any contrast and paper tone look alike), shrunk to the working size,
-/// and its features.
-pub fn working_features(grey: &GrayImage, max_side: u32, bank: &FilterBank) -> Features {
+/// The normalised drawing ([`normalise`]) at the working size, and its features.
+pub fn working_features(grey: &GrayImage, working: &Working, bank: &FilterBank) -> Features {
     let (w, h) = grey.dimensions();
-    let ch = Channels::from_gray(&normalise(grey));
-    let (ws, hs) = working_size(w, h, max_side);
-    let work = if (ws, hs) == (w, h) {
-        ch
+    let norm = normalise(grey);
+    let (ws, hs) = working_size(w, h, working);
+    let ch = if ws > w {
+        let big = image::imageops::resize(&norm, ws, hs, image::imageops::FilterType::Triangle);
+        Channels::from_gray(&big)
+    } else if ws < w {
+        pixelclass::resample::shrink(&Channels::from_gray(&norm), ws as usize, hs as usize)
     } else {
-        pixelclass::resample::shrink(&ch, ws as usize, hs as usize)
+        Channels::from_gray(&norm)
     };
-    pixelclass::features::compute(&work, bank)
+    pixelclass::features::compute(&ch, bank)
 }
 
 /// The grey stretched so that its 1st percentile is 0 and its 90th is 255.
@@ -203,9 +229,16 @@ mod tests {
     }
 
     #[test]
-    fn working_size_keeps_small_drawings_and_shrinks_large_ones() {
-        assert_eq!(working_size(600, 400, 1200), (600, 400));
-        assert_eq!(working_size(3000, 2000, 1200), (1200, 800));
+    fn working_size_enlarges_small_drawings_and_shrinks_large_ones() {
+        let wk = Working {
+            enlarge_below: 1000,
+            max_side: 1200,
+        };
+        assert_eq!(working_size(600, 400, &wk), (1200, 800));
+        assert_eq!(working_size(300, 200, &wk), (600, 400));
+        assert_eq!(working_size(1100, 400, &wk), (1100, 400));
+        assert_eq!(working_size(3000, 2000, &wk), (1200, 800));
+        assert_eq!(working_size(600, 400, &Working::default()), (600, 400));
     }
 
     #[test]

@@ -120,8 +120,8 @@ pub fn wall_probability(
         return model.wall_probability(grey, out_w, out_h);
     }
     let (w, h) = grey.dimensions();
-    let (ws, hs) = working_size(w, h, model.max_side);
-    let f = working_features(grey, model.max_side, &model.bank);
+    let (ws, hs) = working_size(w, h, &model.working);
+    let f = working_features(grey, &model.working, &model.bank);
     let map = model.working_map(&f);
     let ac = pixelclass::AutoContext {
         sigmas: vec![1.0, 3.0, 8.0],
@@ -175,6 +175,7 @@ pub fn wall_probability(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ink::train::fixtures::{sheet, toy_model};
 
     fn stroke(wall: bool, points: Vec<[f64; 2]>) -> InkStroke {
         InkStroke {
@@ -229,5 +230,46 @@ mod tests {
         assert!(cells.contains(&(2, 4)) && cells.contains(&(6, 6)) && cells.contains(&(4, 5)));
         assert!(!cells.iter().any(|&(_, y)| y < 4 || y > 6));
         assert_eq!(cells.iter().filter(|&&(_, y)| y == 5).count(), 7);
+    }
+
+    #[test]
+    fn a_wall_stroke_on_a_letter_makes_it_wall_and_the_frame_stays() {
+        let model = toy_model();
+        let test = sheet(9);
+        let (w, h) = test.grey.dimensions();
+        // One letter stroke (5 dark pixels in a column, not on the frame).
+        let (x, y) = (16..74u32)
+            .flat_map(|x| (16..50u32).map(move |y| (x, y)))
+            .find(|&(x, y)| (0..5).all(|k| test.grey.get_pixel(x, y + k)[0] < 128))
+            .unwrap();
+        let before = model.wall_probability(&test.grey, w, h);
+        let at = |p: &[f32]| p[((y + 2) * w + x) as usize];
+        assert!(
+            at(&before) < 0.5,
+            "the model reads the letter as wall already"
+        );
+        let strokes = [InkStroke {
+            wall: true,
+            radius: 0.7,
+            points: vec![
+                [f64::from(x) + 0.5, f64::from(y) + 0.5],
+                [f64::from(x) + 0.5, f64::from(y) + 4.5],
+            ],
+        }];
+        check(&strokes, w, h).unwrap();
+        let after = wall_probability(&model, &test.grey, &strokes, 1, w, h);
+        assert!(at(&after) > 0.5, "P(wall) under the stroke {}", at(&after));
+        let frame = (10..80)
+            .filter(|&fx| after[(12 * w + fx) as usize] > 0.5)
+            .count();
+        assert!(
+            frame >= 60,
+            "{frame} of 70 frame pixels on row 12 still wall"
+        );
+        // Same strokes, same seed: same map.
+        assert_eq!(
+            after,
+            wall_probability(&model, &test.grey, &strokes, 1, w, h)
+        );
     }
 }

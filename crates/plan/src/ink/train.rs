@@ -8,7 +8,7 @@ use pixelclass::{Features, FilterBank, Forest, ForestParams};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::model::{FORMAT, WallInk, with_context, working_features, working_size};
+use super::model::{FORMAT, WallInk, Working, with_context, working_features, working_size};
 use super::paint::{IGNORE, WALL};
 
 /// The source of a drawing for leave-one-source-out measurement: its book, the tomes of one
@@ -31,7 +31,7 @@ pub struct Sheet {
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrainParams {
     pub bank: FilterBank,
-    pub max_side: u32,
+    pub working: Working,
     /// Empty: one stage.
     pub context_sigmas: Vec<f32>,
     pub forest: ForestParams,
@@ -44,15 +44,20 @@ impl Default for TrainParams {
     fn default() -> Self {
         TrainParams {
             bank: FilterBank {
-                sigmas: vec![0.7, 1.0, 1.6, 3.5, 5.0, 10.0],
-                families: pixelclass::Family::ALL.to_vec(),
+                sigmas: vec![0.7, 1.6, 3.5, 7.0, 14.0],
+                families: vec![
+                    pixelclass::Family::Smoothing,
+                    pixelclass::Family::GradientMagnitude,
+                    pixelclass::Family::LaplacianOfGaussian,
+                    pixelclass::Family::Hessian,
+                ],
             },
-            max_side: 1200,
+            working: Working::default(),
             context_sigmas: vec![1.0, 3.0, 8.0],
             forest: ForestParams {
-                trees: 24,
-                max_depth: 14,
-                min_leaf: 4,
+                trees: 16,
+                max_depth: 13,
+                min_leaf: 8,
                 max_per_class: 60_000,
                 ..ForestParams::default()
             },
@@ -111,7 +116,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         .iter()
         .zip(&picks)
         .map(|(s, pk)| {
-            let f = working_features(&s.grey, p.max_side, &p.bank);
+            let f = working_features(&s.grey, &p.working, &p.bank);
             let mut rows = (Vec::new(), Vec::new());
             push_rows(&f, pk, &mut rows.0, &mut rows.1);
             rows
@@ -143,7 +148,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         let (mut x, mut l) = (Vec::new(), Vec::new());
         let ac = context(p);
         for (i, (s, pk)) in sheets.iter().zip(&picks).enumerate() {
-            let f = working_features(&s.grey, p.max_side, &p.bank);
+            let f = working_features(&s.grey, &p.working, &p.bank);
             let map = other[i % 2].predict(&f)?;
             push_rows(&with_context(f, &map, &ac), pk, &mut x, &mut l);
         }
@@ -154,7 +159,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
     Ok(WallInk {
         format: FORMAT,
         bank: p.bank.clone(),
-        max_side: p.max_side,
+        working: p.working,
         context_sigmas: p.context_sigmas.clone(),
         stages,
         provenance: provenance.to_string(),
@@ -182,7 +187,7 @@ fn push_rows(f: &Features, picks: &Picks, x: &mut Vec<f32>, labels: &mut Vec<usi
 /// dark non-wall pixels (clutter ink); ignored pixels never.
 fn pick(s: &Sheet, p: &TrainParams, seed: u64) -> Picks {
     let (w, h) = s.grey.dimensions();
-    let (ws, hs) = working_size(w, h, p.max_side);
+    let (ws, hs) = working_size(w, h, &p.working);
     let norm = super::model::normalise(&s.grey);
     let (mut wall, mut open, mut clutter) = (Vec::new(), Vec::new(), Vec::new());
     for y in 0..hs {
@@ -238,13 +243,14 @@ pub fn confusion(prob: &[f32], truth: &GrayImage) -> (usize, usize, usize) {
     (tp, fp, fn_)
 }
 
+/// Toy sheets and small settings, for the tests of training and refinement.
 #[cfg(test)]
-mod tests {
+pub(crate) mod fixtures {
     use super::*;
     use image::Luma;
 
     /// A sheet with a thick wall frame (6 px), thin letter strokes (1 px) inside and out.
-    fn sheet(seed: u64) -> Sheet {
+    pub fn sheet(seed: u64) -> Sheet {
         let (w, h) = (90, 70);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut grey = GrayImage::from_pixel(w, h, Luma([235]));
@@ -268,7 +274,7 @@ mod tests {
         Sheet { grey, truth }
     }
 
-    fn small() -> TrainParams {
+    pub fn small() -> TrainParams {
         TrainParams {
             bank: FilterBank {
                 sigmas: vec![1.0, 3.0],
@@ -282,6 +288,18 @@ mod tests {
             ..TrainParams::default()
         }
     }
+
+    /// A model trained on four toy sheets.
+    pub fn toy_model() -> WallInk {
+        let sheets: Vec<Sheet> = (0..4).map(sheet).collect();
+        train(&sheets, &small(), "toy").unwrap()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixtures::{sheet, small};
+    use super::*;
 
     #[test]
     fn learns_thick_walls_from_thin_strokes_and_the_model_round_trips() {
