@@ -258,7 +258,10 @@ mod flag_tests {
         let a = plan_args(&[]).unwrap();
         assert_eq!((a.ink, a.walls), (InkMethod::Learned, None));
         let a = plan_args(&["--ink", "rules", "--walls", "w.png"]).unwrap();
-        assert_eq!((a.ink, a.walls), (InkMethod::Rules, Some(PathBuf::from("w.png"))));
+        assert_eq!(
+            (a.ink, a.walls),
+            (InkMethod::Rules, Some(PathBuf::from("w.png")))
+        );
         let e = plan_args(&["--ink", "otsu"]).unwrap_err().to_string();
         assert!(e.contains("'otsu' is not a way to read walls"), "{e}");
     }

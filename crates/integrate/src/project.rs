@@ -403,9 +403,15 @@ plan_points = [[10, 10], [20, 20]]
     #[test]
     fn the_ink_method_and_the_users_ink_strokes_reach_the_plan_options() {
         use plan::ink::InkMethod;
-        assert_eq!(Project::from_toml(GOOD).unwrap().plan_options().ink, InkMethod::Learned);
+        assert_eq!(
+            Project::from_toml(GOOD).unwrap().plan_options().ink,
+            InkMethod::Learned
+        );
         let rules = GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"rules\"");
-        assert_eq!(Project::from_toml(&rules).unwrap().plan_options().ink, InkMethod::Rules);
+        assert_eq!(
+            Project::from_toml(&rules).unwrap().plan_options().ink,
+            InkMethod::Rules
+        );
         let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"otsu\""))
             .unwrap_err()
             .to_string();
@@ -421,7 +427,10 @@ plan_points = [[10, 10], [20, 20]]
         let e = Project::from_toml(&stroked.replace("radius = 3", "radius = -1"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("[[ink_stroke]]") && e.contains("ink stroke 0"), "{e}");
+        assert!(
+            e.contains("[[ink_stroke]]") && e.contains("ink stroke 0"),
+            "{e}"
+        );
     }
 
     /// Issue 19: `scale = 1e300` once surfaced as an internal error of the generated program.

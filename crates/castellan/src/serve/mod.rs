@@ -12,9 +12,9 @@ mod edit_tests;
 #[cfg(test)]
 mod fuzz_tests;
 mod guard;
-mod ink;
 #[cfg(test)]
 mod guard_tests;
+mod ink;
 mod lines;
 mod preview;
 mod project;

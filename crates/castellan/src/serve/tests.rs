@@ -317,6 +317,68 @@ async fn the_plan_stage_writes_its_label_overlay() {
     assert_eq!(p["last"]["ok"], true);
 }
 
+/// Issue 26: the user's wall / not-wall strokes and the choice of the rules are saved in
+/// PROJECT.toml and change the walls the plan stage reads; bad strokes are refused by name.
+#[tokio::test]
+async fn wall_ink_strokes_are_saved_and_change_the_walls_read() {
+    let dir = demo_project();
+    let app = app(dir.path(), 1 << 20);
+    let (s, v) = json(&app, "POST", "/api/plan", "").await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert_eq!(
+        (v["ink"].as_str(), v["ink_strokes"].as_u64()),
+        (Some("learned"), Some(0))
+    );
+    let walls = |v: &serde_json::Value| {
+        let path = v["walls"]
+            .as_str()
+            .unwrap()
+            .trim_start_matches("/files/")
+            .to_string();
+        std::fs::read(dir.path().join(path)).unwrap()
+    };
+    let before = walls(&v);
+    let plan = image::open(dir.path().join("plan.png")).unwrap();
+    let (w, h) = (plan.width() as f64, plan.height() as f64);
+    // A broad "not wall" stroke across the middle of the drawing, over whatever walls are
+    // there, and a "wall" dot in a corner.
+    let body = serde_json::json!({"ink": "learned", "strokes": [
+        {"wall": false, "radius": 12, "points": [[w * 0.2, h * 0.5], [w * 0.8, h * 0.5]]},
+        {"wall": true, "radius": 3, "points": [[5, 5]]},
+    ]});
+    let (s, r) = json(&app, "PUT", "/api/plan/ink", &body.to_string()).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    assert_eq!(saved_project(dir.path()).ink_strokes.len(), 2);
+    let (_, v) = json(&app, "POST", "/api/plan", "").await;
+    assert_eq!(v["ink_strokes"].as_u64(), Some(2), "{v}");
+    assert_ne!(
+        walls(&v),
+        before,
+        "the strokes changed no pixel of the walls"
+    );
+    // The rules instead: saved, and reported by the plan stage.
+    let rules = serde_json::json!({"ink": "rules", "strokes": []});
+    let (s, _) = json(&app, "PUT", "/api/plan/ink", &rules.to_string()).await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(
+        saved_project(dir.path()).ink,
+        Some(plan::ink::InkMethod::Rules)
+    );
+    let (_, v) = json(&app, "POST", "/api/plan", "").await;
+    assert_eq!(v["ink"].as_str(), Some("rules"), "{v}");
+    // A stroke off the drawing is refused, naming it; nothing is saved.
+    let off = serde_json::json!({"ink": "learned", "strokes": [
+        {"wall": true, "radius": 2, "points": [[w + 50.0, 5]]},
+    ]});
+    let (s, e) = json(&app, "PUT", "/api/plan/ink", &off.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{e}");
+    assert!(e["error"].as_str().unwrap().contains("ink stroke 0"), "{e}");
+    assert_eq!(
+        saved_project(dir.path()).ink,
+        Some(plan::ink::InkMethod::Rules)
+    );
+}
+
 #[tokio::test]
 async fn a_stage_without_a_plan_is_a_conflict_not_a_crash() {
     let dir = tempfile::tempdir().unwrap();

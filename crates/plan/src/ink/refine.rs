@@ -228,7 +228,7 @@ mod tests {
         assert!(px.iter().all(|&(_, l)| l == 0));
         let cells: Vec<(usize, usize)> = px.iter().map(|&(i, _)| (i % 10, i / 10)).collect();
         assert!(cells.contains(&(2, 4)) && cells.contains(&(6, 6)) && cells.contains(&(4, 5)));
-        assert!(!cells.iter().any(|&(_, y)| y < 4 || y > 6));
+        assert!(cells.iter().all(|&(_, y)| (4..=6).contains(&y)));
         assert_eq!(cells.iter().filter(|&&(_, y)| y == 5).count(), 7);
     }
 
