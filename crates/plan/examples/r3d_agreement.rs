@@ -1,7 +1,10 @@
 //! Wall-pixel agreement with the R3D / DeepFloorplan wall masks (research data, read from
 //! `../shared/data`, never copied): for each plan, precision, recall and IoU of the pixels
 //! labelled as walls against `<id>_wall.png`, and whether a courtyard (closed outer wall) was
-//! found. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps]`.
+//! found; and the IoU of the wall mask chapter 5 parsed (`ParsedPlan::walls`, the learned wall
+//! ink or the rules' threshold after §5.1.2) and of Otsu's bare threshold, against the same
+//! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps]
+//! [--rules]`.
 
 use std::path::PathBuf;
 
@@ -10,6 +13,11 @@ fn main() {
         .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
     let opts = plan::Options {
         close_gaps: !std::env::args().any(|a| a == "--no-close-gaps"),
+        ink: if std::env::args().any(|a| a == "--rules") {
+            plan::ink::InkMethod::Rules
+        } else {
+            plan::ink::InkMethod::Learned
+        },
         ..Default::default()
     };
     let limit: usize = std::env::args()
@@ -27,8 +35,10 @@ fn main() {
         .collect();
     ids.sort();
     ids.truncate(limit);
-    println!("id\tprecision\trecall\tiou\tcourtyard\tfaces\tms");
+    println!("id\tprecision\trecall\tiou\tcourtyard\tfaces\tms\tmask_iou\totsu_iou\tink_iou");
     let (mut sum_iou, mut closed, mut n) = (0.0, 0, 0);
+    let (mut sum_mask, mut sum_otsu, mut sum_ink) = (0.0, 0.0, 0.0);
+    let model = plan::ink::shipped();
     for id in &ids {
         let img = image::open(dir.join(format!("{id}.jpg"))).unwrap();
         let mask = image::open(dir.join(format!("{id}_wall.png")))
@@ -44,6 +54,16 @@ fn main() {
             }
         };
         let ms = t.elapsed().as_secs_f64() * 1e3;
+        let grey = img.to_luma8();
+        let level = plan::binarize::threshold_level(&grey);
+        let mask_iou = iou_of(&mask, |x, y| p.walls.get(x as i32, y as i32) != 0);
+        let otsu_iou = iou_of(&mask, |x, y| grey.get_pixel(x, y)[0] < level);
+        let (w, h) = grey.dimensions();
+        let prob = model.wall_probability(&grey, w, h);
+        let ink_iou = iou_of(&mask, |x, y| prob[(y * w + x) as usize] > 0.5);
+        sum_ink += ink_iou;
+        sum_mask += mask_iou;
+        sum_otsu += otsu_iou;
         let (mut tp, mut fp, mut fneg) = (0usize, 0usize, 0usize);
         for y in 0..p.height.min(mask.height()) {
             for x in 0..p.width.min(mask.width()) {
@@ -65,7 +85,7 @@ fn main() {
             .iter()
             .any(|f| f.label == plan::label::Label::Courtyard);
         println!(
-            "{id}\t{prec:.3}\t{rec:.3}\t{iou:.3}\t{court}\t{}\t{ms:.0}",
+            "{id}\t{prec:.3}\t{rec:.3}\t{iou:.3}\t{court}\t{}\t{ms:.0}\t{mask_iou:.3}\t{otsu_iou:.3}\t{ink_iou:.3}",
             p.faces.len()
         );
         sum_iou += iou;
@@ -73,7 +93,23 @@ fn main() {
         n += 1;
     }
     println!(
-        "plans {n}, mean IoU {:.3}, closed outer wall {closed}",
-        sum_iou / n.max(1) as f64
+        "plans {n}, mean IoU {:.3} (labelled walls), {:.3} (wall mask), {:.3} (Otsu), {:.3} (learned ink, P > 0.5), closed outer wall {closed}",
+        sum_iou / n.max(1) as f64,
+        sum_mask / n.max(1) as f64,
+        sum_otsu / n.max(1) as f64,
+        sum_ink / n.max(1) as f64
     );
+}
+
+/// IoU of `ours(x, y)` against the R3D wall mask (≥ 128 is wall).
+fn iou_of(mask: &image::GrayImage, ours: impl Fn(u32, u32) -> bool) -> f64 {
+    let (mut tp, mut other) = (0usize, 0usize);
+    for (x, y, m) in mask.enumerate_pixels() {
+        match (ours(x, y), m[0] >= 128) {
+            (true, true) => tp += 1,
+            (false, false) => {}
+            _ => other += 1,
+        }
+    }
+    tp as f64 / (tp + other).max(1) as f64
 }

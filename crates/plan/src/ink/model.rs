@@ -10,7 +10,7 @@ use pixelclass::{Channels, Features, FilterBank, Forest, Probabilities};
 use serde::{Deserialize, Serialize};
 
 /// Version of the model file; a file of another version is refused.
-pub const FORMAT: u32 = 1;
+pub const FORMAT: u32 = 2;
 
 /// The model shipped with castellan.
 pub const SHIPPED: &[u8] = include_bytes!("../../models/wall_ink.bin");
@@ -23,6 +23,11 @@ pub struct WallInk {
     pub bank: FilterBank,
     /// The resolution the features are computed at.
     pub working: Working,
+    /// σ (working pixels) at which the thresholded ink (Otsu's level, as §5.1.2's rule reads
+    /// the drawing) is smoothed into extra features; 0 is the ink itself. The forest then
+    /// learns where to depart from the threshold (hatching filled, letters dropped) rather
+    /// than the whole of it.
+    pub ink_sigmas: Vec<f32>,
     /// σ (working pixels) of the stage-1 wall map given to stage 2; empty: one stage.
     pub context_sigmas: Vec<f32>,
     /// Stage 1, then stage 2 if `context_sigmas` is not empty; class 1 is wall.
@@ -63,7 +68,7 @@ impl WallInk {
                 m.working.max_side
             )));
         }
-        let dim1 = m.bank.dim(1);
+        let dim1 = m.bank.dim(1) + m.ink_sigmas.len();
         for (k, f) in m.stages.iter().enumerate() {
             f.validate()
                 .map_err(|e| ModelError::Invalid(format!("stage {}: {e}", k + 1)))?;
@@ -99,9 +104,14 @@ impl WallInk {
     /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
     /// multiple of it).
     pub fn wall_probability(&self, grey: &GrayImage, out_w: u32, out_h: u32) -> Vec<f32> {
-        let features = working_features(grey, &self.working, &self.bank);
+        let features = self.features(grey);
         let p = self.working_map(&features);
         pixelclass::resample::enlarge(&p, out_w as usize, out_h as usize).class_map(1)
+    }
+
+    /// The features of `grey` at the working resolution ([`working_features`]).
+    pub fn features(&self, grey: &GrayImage) -> Features {
+        working_features(grey, &self.working, &self.bank, &self.ink_sigmas)
     }
 
     /// The maps of every stage at the working resolution, given the bank's features.
@@ -168,10 +178,17 @@ pub fn working_size(w: u32, h: u32, working: &Working) -> (u32, u32) {
     (f(w), f(h))
 }
 
-/// The normalised drawing ([`normalise`]) at the working size, and its features.
-pub fn working_features(grey: &GrayImage, working: &Working, bank: &FilterBank) -> Features {
+/// The normalised drawing ([`normalise`]) at the working size, and its features: the bank's,
+/// then the thresholded ink at each of `ink_sigmas` ([`WallInk::ink_sigmas`]).
+pub fn working_features(
+    grey: &GrayImage,
+    working: &Working,
+    bank: &FilterBank,
+    ink_sigmas: &[f32],
+) -> Features {
     let (w, h) = grey.dimensions();
     let norm = normalise(grey);
+    let level = f32::from(crate::binarize::threshold_level(&norm)) / 255.0;
     let (ws, hs) = working_size(w, h, working);
     let ch = if ws > w {
         let big = image::imageops::resize(&norm, ws, hs, image::imageops::FilterType::Triangle);
@@ -181,7 +198,18 @@ pub fn working_features(grey: &GrayImage, working: &Working, bank: &FilterBank) 
     } else {
         Channels::from_gray(&norm)
     };
-    pixelclass::features::compute(&ch, bank)
+    let mut f = pixelclass::features::compute(&ch, bank);
+    let ink: Vec<f32> = ch.planes[0].iter().map(|&v| f32::from(u8::from(v < level))).collect();
+    for &sigma in ink_sigmas {
+        let plane = if sigma > 0.0 {
+            pixelclass::filters::smooth(&ink, ch.width, ch.height, sigma)
+        } else {
+            ink.clone()
+        };
+        f.planes.push(plane);
+        f.names.push(format!("ink σ{sigma}"));
+    }
+    f
 }
 
 /// The grey stretched so that its 1st percentile is 0 and its 90th is 255.

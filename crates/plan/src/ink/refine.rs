@@ -10,7 +10,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::model::{WallInk, with_context, working_features, working_size};
+use super::model::{WallInk, with_context, working_size};
 
 /// At most this many strokes and points per stroke (a request is bounded).
 pub const MAX_STROKES: usize = 500;
@@ -121,7 +121,7 @@ pub fn wall_probability(
     }
     let (w, h) = grey.dimensions();
     let (ws, hs) = working_size(w, h, &model.working);
-    let f = working_features(grey, &model.working, &model.bank);
+    let f = model.features(grey);
     let map = model.working_map(&f);
     let ac = pixelclass::AutoContext {
         sigmas: vec![1.0, 3.0, 8.0],

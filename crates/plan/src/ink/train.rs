@@ -32,6 +32,8 @@ pub struct Sheet {
 pub struct TrainParams {
     pub bank: FilterBank,
     pub working: Working,
+    /// [`WallInk::ink_sigmas`].
+    pub ink_sigmas: Vec<f32>,
     /// Empty: one stage.
     pub context_sigmas: Vec<f32>,
     pub forest: ForestParams,
@@ -53,6 +55,7 @@ impl Default for TrainParams {
                 ],
             },
             working: Working::default(),
+            ink_sigmas: Vec::new(),
             context_sigmas: vec![1.0, 3.0, 8.0],
             forest: ForestParams {
                 trees: 16,
@@ -116,13 +119,13 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         .iter()
         .zip(&picks)
         .map(|(s, pk)| {
-            let f = working_features(&s.grey, &p.working, &p.bank);
+            let f = working_features(&s.grey, &p.working, &p.bank, &p.ink_sigmas);
             let mut rows = (Vec::new(), Vec::new());
             push_rows(&f, pk, &mut rows.0, &mut rows.1);
             rows
         })
         .collect();
-    let dim = p.bank.dim(1);
+    let dim = p.bank.dim(1) + p.ink_sigmas.len();
     let joined = |which: &mut dyn Iterator<Item = usize>| {
         let (mut x, mut l) = (Vec::new(), Vec::new());
         for i in which {
@@ -148,7 +151,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         let (mut x, mut l) = (Vec::new(), Vec::new());
         let ac = context(p);
         for (i, (s, pk)) in sheets.iter().zip(&picks).enumerate() {
-            let f = working_features(&s.grey, &p.working, &p.bank);
+            let f = working_features(&s.grey, &p.working, &p.bank, &p.ink_sigmas);
             let map = other[i % 2].predict(&f)?;
             push_rows(&with_context(f, &map, &ac), pk, &mut x, &mut l);
         }
@@ -160,6 +163,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         format: FORMAT,
         bank: p.bank.clone(),
         working: p.working,
+        ink_sigmas: p.ink_sigmas.clone(),
         context_sigmas: p.context_sigmas.clone(),
         stages,
         provenance: provenance.to_string(),
