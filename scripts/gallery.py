@@ -27,9 +27,9 @@ DEVSET = ROOT / "crates" / "plan" / "tests" / "data" / "devset.json"
 # 21 plans: whole castles of every kind in the collection (Viollet-le-Duc's engravings,
 # Lefèvre-Pontalis's and Armitage's plans, Loftie's Tower of London), keeps, a town gate,
 # and drawings known to be hard (grey washes, earthworks, hatching). Metres per pixel where
-# the scale bar was read by hand. A third element turns on plan options a user would choose
-# for that drawing (Loftie's White Tower has hatched walls), both for `castellan plan` and in
-# the project `castellan reconstruct` reads.
+# the scale bar was read by hand. A third element would turn on plan options a user would
+# choose for that drawing, both for `castellan plan` and in the project `castellan
+# reconstruct` reads (Loftie's White Tower needed `--hatching` until the learned wall ink).
 PLANS = [
     ("plans/vld3_coucy_plan_112.png", 0.32),
     ("plans/vld3_pierrefonds_plan_154.png", None),
@@ -51,7 +51,7 @@ PLANS = [
     ("plans/armitage_old-sarum_plan_fig30.png", None),
     ("plans/loftie_tower-of-london_plan_plan-01.png", None),
     ("plans/vldannals_roche-pont_plan_fig45.jpg", None),
-    ("plans/loftie_tower-of-london-white-tower_plan_plan-02.png", None, ["hatching"]),
+    ("plans/loftie_tower-of-london-white-tower_plan_plan-02.png", None),
 ]
 
 # 10 orthographic elevations. `bbox` outlines the façade to parse, `training` holds the boxes
@@ -269,7 +269,7 @@ def gallery_plan(path, scale, options, info, towers_drawn, tmp):
     src = DATA / path
     shutil.copy(src, dst / ("input" + src.suffix))
     ok, secs, msg = run(["plan", src, "-o", tmp / f"{stem}.json", "--overlay",
-                         dst / "labels.png", "--svg", dst / "walls.svg",
+                         dst / "labels.png", "--walls", dst / "ink.png", "--svg", dst / "walls.svg",
                          *[f"--{o}" for o in options]])
     row = {"stem": stem, "input": "input" + src.suffix, "ok": ok, "secs": secs, "msg": msg,
            "options": [f"--{o}" for o in options],
@@ -346,12 +346,13 @@ def page(plans, elevations, elapsed):
            "All drawings are in the public domain (authors died more than 70 years ago; scans",
            "from Project Gutenberg editions mirrored by GITenberg, and from archive.org); each row",
            "names its book and author.", "", "## Plans", "",
-           "Each plan: the input, `castellan plan --overlay` (colours by label, legend in",
+           "Each plan: the input, the walls as read (`castellan plan --walls`: red wall over the",
+           "drawing in grey; the learned wall ink, issue 26), `castellan plan --overlay` (colours by label, legend in",
            "ARCHITECTURE.md; a scale bar found on the sheet is framed in magenta — whether it",
            "is the bar is for the reader to judge), the vectorised walls (`--svg`), and the model `castellan reconstruct`",
            "builds from the plan alone (class heights of §5.3; library towers, keep and walls).", "",
-           "| drawing | result | input | labels | walls (SVG) | model |",
-           "| --- | --- | --- | --- | --- | --- |"]
+           "| drawing | result | input | walls read | labels | walls (SVG) | model |",
+           "| --- | --- | --- | --- | --- | --- | --- |"]
     for r in plans:
         d = f"gallery/plans/{r['stem']}"
         who = f"**{r['castle']}**<br>{r['author']}, *{r['book']}*<br>`{r['stem']}`"
@@ -371,7 +372,7 @@ def page(plans, elevations, elapsed):
         else:
             res = f"**failed**: {r['msg']}"
         img = lambda n: f"![]({d}/{n})" if (OUT / "plans" / r["stem"] / n).is_file() else "—"
-        out.append(f"| {who} | {res} | {img(r['input'])} | {img('labels.png')} | "
+        out.append(f"| {who} | {res} | {img(r['input'])} | {img('ink.png')} | {img('labels.png')} | "
                    f"{img('walls.svg')} | {img('model.png')} |")
     out += ["", "## Elevations", "",
             "Each orthographic elevation through the rectangular façade stage (`castellan facade`",

@@ -1,4 +1,5 @@
-//! Time of each stage on the 3000 × 2000 synthetic scan (what the benchmark spends where).
+//! Time of each stage on the 3000 × 2000 synthetic scan (what the benchmark spends where),
+//! and of the whole parse with the learned wall ink and with the rules.
 //! Run: `cargo run --release -p plan --example stage_times`.
 
 use std::time::Instant;
@@ -40,10 +41,21 @@ fn main() {
     let _ = plan::graph::faces(&skel);
     println!("faces {:?}", t.elapsed());
     let t = Instant::now();
-    let p = plan::parse(
-        &image::DynamicImage::ImageLuma8(img),
-        &plan::Options::default(),
-    )
-    .unwrap();
-    println!("whole parse {:?} ({} towers)", t.elapsed(), p.towers);
+    let model = plan::ink::shipped();
+    let _ = model.wall_probability(&img, img.width(), img.height());
+    println!("learned wall ink alone {:?}", t.elapsed());
+    let drawing = image::DynamicImage::ImageLuma8(img);
+    for ink in [plan::ink::InkMethod::Learned, plan::ink::InkMethod::Rules] {
+        let t = Instant::now();
+        let opts = plan::Options {
+            ink,
+            ..Default::default()
+        };
+        let p = plan::parse(&drawing, &opts).unwrap();
+        println!(
+            "whole parse, {ink:?} ink {:?} ({} towers)",
+            t.elapsed(),
+            p.towers
+        );
+    }
 }

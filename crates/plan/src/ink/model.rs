@@ -199,7 +199,10 @@ pub fn working_features(
         Channels::from_gray(&norm)
     };
     let mut f = pixelclass::features::compute(&ch, bank);
-    let ink: Vec<f32> = ch.planes[0].iter().map(|&v| f32::from(u8::from(v < level))).collect();
+    let ink: Vec<f32> = ch.planes[0]
+        .iter()
+        .map(|&v| f32::from(u8::from(v < level)))
+        .collect();
     for &sigma in ink_sigmas {
         let plane = if sigma > 0.0 {
             pixelclass::filters::smooth(&ink, ch.width, ch.height, sigma)

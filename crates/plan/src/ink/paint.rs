@@ -221,30 +221,45 @@ fn paint_stroke(mask: &mut GrayImage, s: &Stroke) {
         n.saturating_sub(1)
     };
     let (w, h) = mask.dimensions();
-    let r = s.width / 2.0;
     for k in 0..segments.max(usize::from(n == 1)) {
-        let a = s.points[k];
-        let b = s.points[(k + 1) % n];
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len2 = dx * dx + dy * dy;
-        let x0 = (a[0].min(b[0]) - r).floor().max(0.0) as u32;
-        let y0 = (a[1].min(b[1]) - r).floor().max(0.0) as u32;
-        let x1 = (a[0].max(b[0]) + r).ceil().min(f64::from(w) - 1.0);
-        let y1 = (a[1].max(b[1]) + r).ceil().min(f64::from(h) - 1.0);
-        if x1 < 0.0 || y1 < 0.0 {
-            continue;
-        }
-        for y in y0..=y1 as u32 {
-            for x in x0..=x1 as u32 {
-                let (px, py) = (f64::from(x) - a[0], f64::from(y) - a[1]);
-                let t = if len2 > 0.0 {
-                    ((px * dx + py * dy) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                if (px - t * dx).hypot(py - t * dy) <= r {
-                    mask.put_pixel(x, y, Luma([WALL]));
-                }
+        let (a, b) = (s.points[k], s.points[(k + 1) % n]);
+        near_segment(a, b, s.width / 2.0, (w, h), 0.0, |x, y| {
+            mask.put_pixel(x, y, Luma([WALL]))
+        });
+    }
+}
+
+/// Calls `visit` for every pixel of a `size` grid whose position (x + `offset`, y + `offset`)
+/// lies within `r` of the segment from `a` to `b` (a point when they coincide). The one
+/// brush rule of the painted masks and the user's strokes.
+pub(crate) fn near_segment(
+    a: [f64; 2],
+    b: [f64; 2],
+    r: f64,
+    size: (u32, u32),
+    offset: f64,
+    mut visit: impl FnMut(u32, u32),
+) {
+    let (w, h) = size;
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let x0 = (a[0].min(b[0]) - r - offset).floor().max(0.0) as u32;
+    let y0 = (a[1].min(b[1]) - r - offset).floor().max(0.0) as u32;
+    let x1 = (a[0].max(b[0]) + r).ceil().min(f64::from(w) - 1.0);
+    let y1 = (a[1].max(b[1]) + r).ceil().min(f64::from(h) - 1.0);
+    if x1 < 0.0 || y1 < 0.0 {
+        return;
+    }
+    for y in y0..=y1 as u32 {
+        for x in x0..=x1 as u32 {
+            let (px, py) = (f64::from(x) + offset - a[0], f64::from(y) + offset - a[1]);
+            let t = if len2 > 0.0 {
+                ((px * dx + py * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            if (px - t * dx).hypot(py - t * dy) <= r {
+                visit(x, y);
             }
         }
     }

@@ -11,6 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use super::model::{WallInk, with_context, working_size};
+use super::paint::near_segment;
 
 /// At most this many strokes and points per stroke (a request is bounded).
 pub const MAX_STROKES: usize = 500;
@@ -80,25 +81,9 @@ fn stroked(strokes: &[InkStroke], w: u32, h: u32, ws: u32, hs: u32) -> Vec<(usiz
             pts.windows(2).map(|p| (p[0], p[1])).collect()
         };
         for (a, b) in segs {
-            let x0 = (a[0].min(b[0]) - r).floor().max(0.0) as u32;
-            let y0 = (a[1].min(b[1]) - r).floor().max(0.0) as u32;
-            let x1 = ((a[0].max(b[0]) + r).ceil() as u32).min(ws - 1);
-            let y1 = ((a[1].max(b[1]) + r).ceil() as u32).min(hs - 1);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let len2 = dx * dx + dy * dy;
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let (px, py) = (f64::from(x) + 0.5 - a[0], f64::from(y) + 0.5 - a[1]);
-                    let t = if len2 > 0.0 {
-                        ((px * dx + py * dy) / len2).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    if (px - t * dx).hypot(py - t * dy) <= r {
-                        out.push(((y * ws + x) as usize, usize::from(s.wall)));
-                    }
-                }
-            }
+            near_segment(a, b, r, (ws, hs), 0.5, |x, y| {
+                out.push(((y * ws + x) as usize, usize::from(s.wall)));
+            });
         }
     }
     out.sort_unstable();
