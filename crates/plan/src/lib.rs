@@ -256,28 +256,7 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     };
     let scale_bar = scalebar::find(&grey);
     // The learned ink reads the drawing at its own resolution; its map is enlarged with it.
-    let learned = match opts.ink {
-        ink::InkMethod::Learned => {
-            ink::refine::check(&opts.ink_strokes, w, h).map_err(PlanError::Strokes)?;
-            let model = opts.ink_model.clone().unwrap_or_else(ink::shipped);
-            let p = ink::refine::wall_probability(
-                &model,
-                &grey,
-                &opts.ink_strokes,
-                opts.seed,
-                w * k,
-                h * k,
-            );
-            Some(image::GrayImage::from_fn(w * k, h * k, |x, y| {
-                image::Luma([if p[(y * w * k + x) as usize] > ink::WALL_THRESHOLD {
-                    255
-                } else {
-                    0
-                }])
-            }))
-        }
-        ink::InkMethod::Rules => None,
-    };
+    let learned = learned_mask(&grey, k, opts)?;
     let parsed = if k == 1 {
         parse_grey(&grey, learned, opts)?
     } else {
@@ -399,6 +378,27 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         warnings: p.warnings,
         scale_bar: p.scale_bar,
     }
+}
+
+/// The learned wall ink's mask (255 = wall) of `grey` at `k` times its size, refined by the
+/// user's strokes; `None` when the walls are read by the rules.
+fn learned_mask(
+    grey: &image::GrayImage,
+    k: u32,
+    opts: &Options,
+) -> Result<Option<image::GrayImage>, PlanError> {
+    if opts.ink == ink::InkMethod::Rules {
+        return Ok(None);
+    }
+    let (w, h) = grey.dimensions();
+    ink::refine::check(&opts.ink_strokes, w, h).map_err(PlanError::Strokes)?;
+    let model = opts.ink_model.clone().unwrap_or_else(ink::shipped);
+    let (wk, hk) = (w * k, h * k);
+    let p = ink::refine::wall_probability(&model, grey, &opts.ink_strokes, opts.seed, wk, hk);
+    Ok(Some(image::GrayImage::from_fn(wk, hk, |x, y| {
+        let wall = p[(y * wk + x) as usize] > ink::WALL_THRESHOLD;
+        image::Luma([if wall { 255 } else { 0 }])
+    })))
 }
 
 /// Parses `grey` (already enlarged if it was small); `learned` is the learned wall mask at

@@ -90,3 +90,19 @@ fn small_drawing_with_thin_walls_is_enlarged_and_parsed() {
         .count();
     assert!(right + 3 >= truth.len(), "{right} of {}", truth.len());
 }
+
+#[test]
+fn a_users_stroke_off_the_drawing_is_an_error_naming_it() {
+    let (img, _) = plan::synth::castle(2, 0.4, 360, 280);
+    let opts = Options {
+        ink_strokes: vec![plan::ink::refine::InkStroke {
+            wall: true,
+            radius: 2.0,
+            points: vec![[10.0, 10.0], [400.0, 10.0]],
+        }],
+        ..Default::default()
+    };
+    let e = parse(&DynamicImage::ImageLuma8(img), &opts).unwrap_err();
+    assert!(matches!(e, PlanError::Strokes(_)), "{e}");
+    assert!(e.to_string().contains("ink stroke 0"), "{e}");
+}
