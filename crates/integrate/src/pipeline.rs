@@ -136,18 +136,18 @@ pub struct PlanStage {
 pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, PipelineError> {
     let entry = format!("plan = \"{}\"", project.plan);
     let image = files.image(&project.plan).map_err(at(entry.clone()))?;
-    let parsed =
-        plan::parse(&image, &project.plan_options()).map_err(|e| PipelineError::Entry {
-            entry,
-            message: e.to_string(),
-        })?;
+    let options = project.plan_options();
+    let parsed = plan::parse(&image, &options).map_err(|e| PipelineError::Entry {
+        entry,
+        message: e.to_string(),
+    })?;
     let grey = image.to_luma8();
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
         caption: Some("Plan labels (ch. 5)".into()),
         picture: Picture::Rgb(plan::output::overlay(&parsed, &grey)),
     };
-    let how = match project.plan_options().ink {
+    let how = match options.ink {
         plan::ink::InkMethod::Learned => "learned wall ink",
         plan::ink::InkMethod::Rules => "threshold and clean-up rules",
     };

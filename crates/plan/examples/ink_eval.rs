@@ -69,12 +69,12 @@ fn main() {
             .filter(|(s, _)| s == source)
             .map(|(_, sh)| sh)
             .collect();
-        let mut train_set: Vec<Sheet> = synth.iter().map(clone_sheet).collect();
+        let mut train_set: Vec<Sheet> = synth.clone();
         train_set.extend(
             painted
                 .iter()
                 .filter(|(s, _)| s != source)
-                .map(|(_, sh)| clone_sheet(sh)),
+                .map(|(_, sh)| sh.clone()),
         );
         let model = Arc::new(
             train(&train_set, &params, "leave one out")
@@ -139,13 +139,6 @@ fn main() {
         sum[9],
         sum[10]
     );
-}
-
-fn clone_sheet(s: &Sheet) -> Sheet {
-    Sheet {
-        grey: s.grey.clone(),
-        truth: s.truth.clone(),
-    }
 }
 
 fn add(acc: &mut [usize; 3], c: (usize, usize, usize)) {

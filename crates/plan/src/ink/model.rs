@@ -90,15 +90,9 @@ impl WallInk {
         WallInk::from_bytes(SHIPPED)
     }
 
-    /// The autocontext settings of stage 2: the smoothed stage-1 maps only.
+    /// The autocontext settings of stage 2.
     pub fn context(&self) -> AutoContext {
-        AutoContext {
-            sigmas: self.context_sigmas.clone(),
-            row_column: false,
-            folds: 0,
-            fold_trees: 0,
-            average: false,
-        }
+        smoothed_context(&self.context_sigmas)
     }
 
     /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
@@ -129,6 +123,18 @@ fn predict(forest: &Forest, f: &Features) -> Probabilities {
     forest
         .predict(f)
         .expect("a validated forest matches its own bank")
+}
+
+/// Autocontext from the wall map smoothed at `sigmas` only (no row or column means): the
+/// settings of stage 2 in training and use, and of the refinement by the user's strokes.
+pub fn smoothed_context(sigmas: &[f32]) -> AutoContext {
+    AutoContext {
+        sigmas: sigmas.to_vec(),
+        row_column: false,
+        folds: 0,
+        fold_trees: 0,
+        average: false,
+    }
 }
 
 /// The features of stage 2: the bank's plus the context of the stage-1 maps `p`.
@@ -188,7 +194,6 @@ pub fn working_features(
 ) -> Features {
     let (w, h) = grey.dimensions();
     let norm = normalise(grey);
-    let level = f32::from(crate::binarize::threshold_level(&norm)) / 255.0;
     let (ws, hs) = working_size(w, h, working);
     let ch = if ws > w {
         let big = image::imageops::resize(&norm, ws, hs, image::imageops::FilterType::Triangle);
@@ -199,6 +204,10 @@ pub fn working_features(
         Channels::from_gray(&norm)
     };
     let mut f = pixelclass::features::compute(&ch, bank);
+    if ink_sigmas.is_empty() {
+        return f; // the default: no thresholded-ink planes, so no threshold to take
+    }
+    let level = f32::from(crate::binarize::threshold_level(&norm)) / 255.0;
     let ink: Vec<f32> = ch.planes[0]
         .iter()
         .map(|&v| f32::from(u8::from(v < level)))

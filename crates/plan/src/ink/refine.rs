@@ -10,7 +10,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::model::{WallInk, with_context, working_size};
+use super::model::{WallInk, smoothed_context, with_context, working_size};
 use super::paint::near_segment;
 
 /// At most this many strokes and points per stroke (a request is bounded).
@@ -108,14 +108,7 @@ pub fn wall_probability(
     let (ws, hs) = working_size(w, h, &model.working);
     let f = model.features(grey);
     let map = model.working_map(&f);
-    let ac = pixelclass::AutoContext {
-        sigmas: vec![1.0, 3.0, 8.0],
-        row_column: false,
-        folds: 0,
-        fold_trees: 0,
-        average: false,
-    };
-    let f = with_context(f, &map, &ac);
+    let f = with_context(f, &map, &smoothed_context(&[1.0, 3.0, 8.0]));
     let user = stroked(strokes, w, h, ws, hs);
     let mut near = vec![false; f.width * f.height];
     user.iter().for_each(|&(i, _)| near[i] = true);

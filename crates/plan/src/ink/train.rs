@@ -8,7 +8,9 @@ use pixelclass::{Features, FilterBank, Forest, ForestParams};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::model::{FORMAT, WallInk, Working, with_context, working_features, working_size};
+use super::model::{
+    FORMAT, WallInk, Working, smoothed_context, with_context, working_features, working_size,
+};
 use super::paint::{IGNORE, WALL};
 
 /// The source of a drawing for leave-one-source-out measurement: its book, the tomes of one
@@ -22,6 +24,7 @@ pub fn source_of(book: &str) -> String {
 
 /// One training drawing: its grey image and its mask ([`WALL`], not wall, or [`IGNORE`]) of
 /// the same size.
+#[derive(Clone)]
 pub struct Sheet {
     pub grey: GrayImage,
     pub truth: GrayImage,
@@ -149,7 +152,7 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
             });
         }
         let (mut x, mut l) = (Vec::new(), Vec::new());
-        let ac = context(p);
+        let ac = smoothed_context(&p.context_sigmas);
         for (i, (s, pk)) in sheets.iter().zip(&picks).enumerate() {
             let f = working_features(&s.grey, &p.working, &p.bank, &p.ink_sigmas);
             let map = other[i % 2].predict(&f)?;
@@ -168,16 +171,6 @@ pub fn train(sheets: &[Sheet], p: &TrainParams, provenance: &str) -> Result<Wall
         stages,
         provenance: provenance.to_string(),
     })
-}
-
-fn context(p: &TrainParams) -> pixelclass::AutoContext {
-    pixelclass::AutoContext {
-        sigmas: p.context_sigmas.clone(),
-        row_column: false,
-        folds: 0,
-        fold_trees: 0,
-        average: false,
-    }
 }
 
 fn push_rows(f: &Features, picks: &Picks, x: &mut Vec<f32>, labels: &mut Vec<usize>) {
