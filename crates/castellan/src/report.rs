@@ -122,6 +122,20 @@ fn structures_table(h: &mut String, e: &Estimate) {
                     center[0], center[1], radius
                 )
             }
+            Footprint::Wall {
+                thickness, closed, ..
+            } => {
+                let pieces = s.footprint.pieces();
+                let length: f64 = pieces
+                    .iter()
+                    .map(|[a, b]| (b[0] - a[0]).hypot(b[1] - a[1]))
+                    .sum();
+                format!(
+                    "{} wall, {} pieces, {length:.1} long, {thickness:.1} thick",
+                    if *closed { "ring" } else { "open" },
+                    pieces.len()
+                )
+            }
         };
         let facades: Vec<String> = s
             .facades

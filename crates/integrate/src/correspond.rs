@@ -25,11 +25,39 @@ fn local(center: [f64; 2], rotation: f64, p: [f64; 2]) -> (f64, f64) {
     (dx * c + dy * s, -dx * s + dy * c)
 }
 
-fn area(f: &Footprint) -> f64 {
+/// A footprint's area, model units².
+pub(crate) fn area(f: &Footprint) -> f64 {
     match f {
         Footprint::Rectangle { size, .. } => size[0] * size[1],
         Footprint::Circle { radius, .. } => PI * radius * radius,
+        Footprint::Wall { thickness, .. } => {
+            thickness * f.pieces().iter().map(|[a, b]| length(*a, *b)).sum::<f64>()
+        }
     }
+}
+
+fn length(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+pub(crate) fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
+/// The piece of a wall's centreline nearest to `p`.
+fn nearest_piece(f: &Footprint, p: [f64; 2]) -> Option<([[f64; 2]; 2], f64)> {
+    f.pieces()
+        .into_iter()
+        .map(|s| (s, segment_distance(p, s[0], s[1])))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// Whether a point (model units, plan frame) lies inside a footprint.
@@ -45,6 +73,9 @@ pub fn contains(f: &Footprint, p: [f64; 2]) -> bool {
         }
         Footprint::Circle { center, radius } => {
             (p[0] - center[0]).hypot(p[1] - center[1]) <= *radius
+        }
+        Footprint::Wall { thickness, .. } => {
+            nearest_piece(f, p).is_some_and(|(_, d)| d <= thickness / 2.0)
         }
     }
 }
@@ -115,6 +146,15 @@ pub fn place(footprint: &Footprint, points: &[[f64; 2]]) -> Placement {
                 diameter: 2.0 * radius,
             }
         }
+        // A façade on a wall covers the straight piece it was pointed at; its outer face is
+        // the wall's field face.
+        Footprint::Wall { .. } => Placement::Side {
+            side: Side::North,
+            length: points
+                .first()
+                .and_then(|p| nearest_piece(footprint, *p))
+                .map_or(0.0, |([a, b], _)| length(a, b)),
+        },
     }
 }
 
@@ -200,6 +240,7 @@ mod tests {
         let mk = |footprint| Structure {
             id: String::new(),
             label: plan::label::Label::UnknownRoom,
+            role: crate::estimate::Role::Room,
             kind: Kind::Solid,
             footprint,
             height: 1.0,
@@ -223,6 +264,7 @@ mod tests {
         let segment = Structure {
             id: "wall1".into(),
             label: plan::label::Label::CastleOuterWall,
+            role: crate::estimate::Role::Curtain,
             kind: Kind::Solid,
             footprint: Footprint::Rectangle {
                 center: [0.0, 0.0],
@@ -238,6 +280,7 @@ mod tests {
         let tower = Structure {
             id: "tower1".into(),
             label: plan::label::Label::TowerWall,
+            role: crate::estimate::Role::Tower,
             kind: Kind::SolidCylindrical,
             footprint: Footprint::Circle {
                 center: [0.0, 1.0],

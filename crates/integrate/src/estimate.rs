@@ -37,6 +37,8 @@ pub struct Structure {
     pub id: String,
     /// The plan label (§5.1.6) of the shape, the root of its hierarchy (§6.1.3).
     pub label: Label,
+    /// What the structure is to a heritage expert, decided from the plan (issue 25).
+    pub role: Role,
     pub kind: Kind,
     pub footprint: Footprint,
     pub height: f64,
@@ -63,6 +65,41 @@ pub enum Kind {
     SolidCylindrical,
 }
 
+/// What a structure is to a heritage expert (§6.1.3's classes named as §7.2.2's library names
+/// them), decided from the plan's shapes and labels by `structures::roles`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// The donjon: the largest tower with the thickest walls, or a tower standing free in a
+    /// ward.
+    Keep,
+    /// A tower of the curtain (a tower room, or a bulge of the outline drawn solid).
+    Tower,
+    /// The curtain wall: a run of the castle's outer wall between towers, with its wall walk
+    /// and a parapet crenellated on the field side.
+    Curtain,
+    /// A roofed range: a room built against the curtain (hall, chapel, lodgings).
+    Range,
+    /// A room standing in a ward, roofed.
+    Room,
+    /// A wall inside the castle that divides wards or rooms: no parapet.
+    Wall,
+}
+
+impl Role {
+    /// The name estimate.json, the report and the program's symbols use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Role::Keep => "keep",
+            Role::Tower => "tower",
+            Role::Curtain => "curtain",
+            Role::Range => "range",
+            Role::Room => "room",
+            Role::Wall => "wall",
+        }
+    }
+}
+
 /// A footprint in the plan's frame (x, z) = plan pixel (x, y) × scale.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase")]
@@ -77,6 +114,13 @@ pub enum Footprint {
     Circle {
         center: [f64; 2],
         radius: f64,
+    },
+    /// A wall `thickness` thick along a centreline (straight pieces, arcs as short chords);
+    /// `closed` when it is a ring (the last point is then joined to the first).
+    Wall {
+        centerline: Vec<[f64; 2]>,
+        thickness: f64,
+        closed: bool,
     },
 }
 
@@ -202,11 +246,29 @@ pub struct Provenance {
     pub fit_error: Option<f64>,
 }
 
+impl Footprint {
+    /// The straight pieces of a wall's centreline, the closing piece of a ring included (none
+    /// for rectangles and circles).
+    pub fn pieces(&self) -> Vec<[[f64; 2]; 2]> {
+        let Footprint::Wall {
+            centerline, closed, ..
+        } = self
+        else {
+            return Vec::new();
+        };
+        let mut out: Vec<[[f64; 2]; 2]> = centerline.windows(2).map(|w| [w[0], w[1]]).collect();
+        if *closed && centerline.len() > 2 {
+            out.push([centerline[centerline.len() - 1], centerline[0]]);
+        }
+        out
+    }
+}
+
 impl Structure {
     /// A tower: a tower room's structure (round or square) or a tower drawn solid as a bulge
     /// of the curtain.
     pub fn is_tower(&self) -> bool {
-        self.label == Label::TowerRoom || self.kind == Kind::SolidCylindrical
+        matches!(self.role, Role::Tower | Role::Keep)
     }
 }
 

@@ -262,6 +262,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
             map_gothic(structure, est, placement, &format!("g{}_{}", k + 1, j + 1));
         }
     }
+    crate::heights::propagate(&mut structures);
     let mut estimate = Estimate {
         scale: frame,
         plan: PlanSource {

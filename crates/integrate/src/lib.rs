@@ -40,6 +40,7 @@ pub mod correspond;
 pub mod error;
 pub mod estimate;
 pub mod gothic;
+pub mod heights;
 mod integration;
 pub mod library;
 pub mod photo;

@@ -35,8 +35,12 @@ fn estimate(plan: &plan::ParsedPlan, scale: Option<f64>) -> Estimate {
     .estimate
 }
 
+/// The towers (the keep, numbered apart as `keep1`, is not one of them).
 fn towers(e: &Estimate) -> Vec<&Structure> {
-    e.structures.iter().filter(|s| s.is_tower()).collect()
+    e.structures
+        .iter()
+        .filter(|s| s.role == integrate::estimate::Role::Tower)
+        .collect()
 }
 
 fn solid_towers(e: &Estimate) -> Vec<&Structure> {

@@ -7,16 +7,16 @@
 
 mod common;
 mod facades;
+mod walls;
 
 use std::f64::consts::TAU;
 use std::fmt::Write;
 
-use crate::estimate::{Estimate, Footprint, Kind, Structure};
+use crate::estimate::{Estimate, Footprint, Kind, Role, Structure};
 use common::{n, storeys, string_list};
 use facades::hollow_box_with_facades;
 
 pub use common::Options;
-use plan::label::Label;
 
 /// The program.
 pub fn generate(e: &Estimate, o: &Options) -> String {
@@ -65,6 +65,13 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         );
         let h = s.height;
         match (&s.footprint, s.kind, s.facades.is_empty()) {
+            (Footprint::Wall { .. }, _, _) => {
+                let list = (!o.wall_textures.is_empty()).then(|| string_list(&o.wall_textures));
+                let text = walls::run(s, list.as_deref());
+                w.params.push_str(&text.params);
+                w.axiom.extend(text.axiom);
+                w.rules.push_str(&text.rules);
+            }
             // A tower drawn solid (a bulge of the curtain): no storeys or slits to take from a
             // façade, only its height.
             (Footprint::Circle { center, radius }, Kind::SolidCylindrical, _) => {
@@ -137,7 +144,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                 let (wd, d) = (size[0], size[1]);
                 let wall = s.wall_thickness.min(wd.min(d) * 0.3);
                 let floors = f64::from(storeys(s, o, u));
-                if s.label == Label::TowerRoom {
+                if s.role == Role::Tower {
                     w.library(
                         "square_tower.vsg",
                         s,
@@ -210,6 +217,17 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
                 );
             }
         }
+    }
+    let lowest_wall = e
+        .structures
+        .iter()
+        .filter(|s| matches!(s.footprint, Footprint::Wall { .. }))
+        .map(|s| s.height)
+        .min_by(f64::total_cmp);
+    if let Some(lowest) = lowest_wall {
+        let text = walls::shared(lowest, u);
+        w.params.push_str(&text.params);
+        w.rules.push_str(&text.rules);
     }
     let Writer {
         imports,
