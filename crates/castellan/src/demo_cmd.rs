@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, anyhow};
 use clap::{Args, ValueEnum};
-use integrate::estimate::{Footprint, Structure};
+use integrate::estimate::{Footprint, Role, Structure};
 
 use crate::output::Outputs;
 
@@ -152,8 +152,8 @@ fn circle(s: &Structure) -> Option<([f64; 2], f64)> {
     }
 }
 
-/// Coucy: the mapped corner tower's height and diameter, the donjon's diameter (the largest
-/// round structure) and the round structures found, against published figures.
+/// Coucy: the mapped corner tower's height and diameter, the donjon's (the keep's) diameter and
+/// height, and the round towers and keep found, against published figures.
 fn compare_coucy(structures: &[Structure], truth: &serde_json::Value) -> Result<Vec<String>> {
     let mut lines = Vec::new();
     let tower = structures
@@ -176,21 +176,34 @@ fn compare_coucy(structures: &[Structure], truth: &serde_json::Value) -> Result<
             pct(2.0 * r, t)
         ));
     }
-    let round: Vec<f64> = structures
+    // Issue 25: the donjon is the keep the plan's shapes name; its height a default over the
+    // measured towers'.
+    let keep = structures
         .iter()
-        .filter_map(circle)
-        .map(|(_, r)| r)
-        .collect();
-    if let Some(d) = round.iter().copied().reduce(f64::max).map(|r| 2.0 * r) {
-        let t = num(&truth["donjon_diameter_m"])?;
-        lines.push(format!(
-            "  donjon diameter       {d:7.2} m   published {t:6.2} m   ({:+.1} %, the largest round structure)",
-            pct(d, t)
-        ));
+        .find(|s| s.role == Role::Keep)
+        .and_then(|s| circle(s).map(|(_, r)| (r, s.height)));
+    match keep {
+        Some((r, h)) => {
+            let t = num(&truth["donjon_diameter_m"])?;
+            lines.push(format!(
+                "  donjon diameter       {:7.2} m   published {t:6.2} m   ({:+.1} %, the keep)",
+                2.0 * r,
+                pct(2.0 * r, t)
+            ));
+            let t = num(&truth["donjon_height_m"])?;
+            lines.push(format!(
+                "  donjon height         {h:7.2} m   published {t:6.2} m   ({:+.1} %, 1.5 × the measured tower: a default)",
+                pct(h, t)
+            ));
+        }
+        None => lines.push("  donjon                not found as the keep".to_string()),
     }
+    let round = structures
+        .iter()
+        .filter(|s| matches!(s.role, Role::Tower | Role::Keep) && circle(s).is_some())
+        .count();
     lines.push(format!(
-        "  round structures      {:7}     drawn {:6}",
-        round.len(),
+        "  round towers and keep {round:7}     drawn {:6}",
         truth["round_towers_on_plan"]
     ));
     Ok(lines)

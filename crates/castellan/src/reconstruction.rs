@@ -30,8 +30,12 @@ pub fn print_summary(s: &Summary) {
         .map(|(k, v)| format!("{} {v:.0} ms", k.name()))
         .collect();
     eprintln!(
-        "{} structures, {} façade(s) mapped, {} terminals; {}",
+        "{} structures: {}",
         s.estimate.structures.len(),
+        integrate::summary::line(&s.estimate)
+    );
+    eprintln!(
+        "{} façade(s) mapped, {} terminals; {}",
         s.estimate
             .structures
             .iter()

@@ -1,5 +1,6 @@
-//! The reconstruction report (index.html): the overlays of every step, the integrated
-//! structures with the provenance of their parameters, stage times and the model's figures.
+//! The reconstruction report (index.html): what was built (the structures by role, measured or
+//! defaulted), the model, the overlays of every step, the integrated structures with the
+//! provenance of their parameters, stage times and the model's figures.
 //! A static page that opens from disk with no network.
 
 use std::fmt::Write;
@@ -61,6 +62,7 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
     }
+    what_was_built(&mut h, e);
     let _ = writeln!(h, "<h2>Model</h2>{}", viewer(&r.exports.glb, e));
     let _ = writeln!(
         h,
@@ -88,7 +90,7 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
         }
     }
     structures_table(&mut h, e);
-    let _ = writeln!(h, "</table><h2>Time per stage</h2><table>");
+    let _ = writeln!(h, "</table></details><h2>Time per stage</h2><table>");
     for (k, v) in &r.stages {
         let _ = writeln!(h, "<tr><td>{}</td><td>{v:.0} ms</td></tr>", k.name());
     }
@@ -96,11 +98,46 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
     h
 }
 
-/// The structures (§6.1.3): footprint, height, façades and the source of every parameter.
+/// What the model holds, as an expert names it (issue 25): the structures by role, how high,
+/// and which heights were measured, lent by a measured structure alike, or defaulted.
+fn what_was_built(h: &mut String, e: &Estimate) {
+    let unit = e.scale.units.symbol();
+    let _ = writeln!(
+        h,
+        "<h2>What was built</h2><p>{}.</p><table><tr><th>structures</th><th>height</th><th>heights measured · lent · default</th><th>ids</th></tr>",
+        esc(&integrate::summary::line(e))
+    );
+    for r in integrate::summary::by_role(e) {
+        let height = if (r.heights[1] - r.heights[0]).abs() < 0.005 {
+            format!("{:.2} {unit}", r.heights[0])
+        } else {
+            format!("{:.2}–{:.2} {unit}", r.heights[0], r.heights[1])
+        };
+        let length = if r.length > 0.0 {
+            format!(", {:.0} {unit} long", r.length)
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td><b>{}</b>{length}</td><td>{height}</td><td>{} · {} · {}</td><td>{}</td></tr>",
+            r.counted(),
+            r.measured,
+            r.lent,
+            r.defaulted,
+            esc(&r.ids.join(", "))
+        );
+    }
+    let _ = writeln!(h, "</table>");
+}
+
+/// The structures (§6.1.3): footprint, height, façades and the source of every parameter,
+/// folded away below the overlays (the lead table says what matters).
 fn structures_table(h: &mut String, e: &Estimate) {
     let _ = writeln!(
         h,
-        "<h2>Structures (§6.1.3)</h2><table><tr><th>id</th><th>label</th><th>footprint</th><th>height</th><th>façades</th><th>provenance</th></tr>"
+        "<details><summary><h2 style=\"display:inline\">Structures (§6.1.3), {} with every parameter's provenance</h2></summary><table><tr><th>id</th><th>role</th><th>label</th><th>footprint</th><th>height</th><th>façades</th><th>provenance</th></tr>",
+        e.structures.len()
     );
     for s in &e.structures {
         let fp = match &s.footprint {
@@ -178,8 +215,9 @@ fn structures_table(h: &mut String, e: &Estimate) {
             .collect();
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
             esc(&s.id),
+            s.role.name(),
             s.label.name(),
             fp,
             s.height,

@@ -244,6 +244,19 @@ pub struct Provenance {
     /// The step's fit error where it has one (pixels of its image).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fit_error: Option<f64>,
+    /// The structure whose measurement this value is, when it was lent by one alike
+    /// (`heights::propagate`, issue 25).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lent_by: Option<String>,
+}
+
+/// How a value was had: measured on this structure, lent by a measured one alike, or a
+/// default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Source {
+    Measured,
+    Lent,
+    Default,
 }
 
 impl Footprint {
@@ -278,6 +291,18 @@ impl Provenance {
             image: image.to_string(),
             step: step.into(),
             fit_error,
+            lent_by: None,
+        }
+    }
+
+    /// Measured, lent or default (a default's `image` is "default").
+    pub fn source(&self) -> Source {
+        if self.image == "default" {
+            Source::Default
+        } else if self.lent_by.is_some() {
+            Source::Lent
+        } else {
+            Source::Measured
         }
     }
 }

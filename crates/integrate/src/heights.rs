@@ -5,16 +5,17 @@
 //! towers. Each value's provenance names the structure it came from.
 
 use crate::correspond::area;
-use crate::estimate::{Footprint, Provenance, Role, Structure};
+use crate::estimate::{Footprint, Provenance, Role, Source, Structure};
 use crate::structures::KEEP_OVER_TOWERS;
 
 /// Towers are alike when their footprints' areas differ by less than this share.
 const ALIKE_AREA: f64 = 0.35;
 
+/// Measured on the structure itself (not lent, not a default).
 fn measured(s: &Structure) -> bool {
     s.provenance
         .get("height")
-        .is_some_and(|p| p.image != "default")
+        .is_some_and(|p| p.source() == Source::Measured)
 }
 
 fn same_shape(a: &Footprint, b: &Footprint) -> bool {
@@ -53,19 +54,18 @@ pub fn propagate(structures: &mut [Structure]) {
         let (height, step) = {
             let src = &structures[j];
             let from = &src.provenance["height"];
-            (
-                src.height,
-                Provenance::new(
-                    &from.image,
-                    format!(
-                        "issue 25 (§6.1.2 extended): the height of {}, measured ({}), lent to a tower of the same shape and size (areas {:.0} % apart)",
-                        src.id,
-                        from.step,
-                        100.0 * diff
-                    ),
-                    None,
+            let mut lent = Provenance::new(
+                &from.image,
+                format!(
+                    "issue 25 (§6.1.2 extended): the height of {}, measured ({}), lent to a tower of the same shape and size (areas {:.0} % apart)",
+                    src.id,
+                    from.step,
+                    100.0 * diff
                 ),
-            )
+                None,
+            );
+            lent.lent_by = Some(src.id.clone());
+            (src.height, lent)
         };
         structures[i].height = height;
         structures[i].provenance.insert("height".into(), step);
@@ -135,7 +135,8 @@ mod tests {
         propagate(&mut s);
         assert_eq!(s[1].height, 35.66);
         assert_eq!(s[1].provenance["height"].image, "elevation.png");
-        assert!(s[1].provenance["height"].step.contains("tower1"));
+        assert_eq!(s[1].provenance["height"].lent_by.as_deref(), Some("tower1"));
+        assert_eq!(s[1].provenance["height"].source(), Source::Lent);
         // Half the radius: another kind of tower, it keeps its default.
         assert_eq!(s[2].height, 20.0);
         assert_eq!(s[3].height, 1.5 * 35.66);

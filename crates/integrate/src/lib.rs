@@ -48,6 +48,7 @@ pub mod pipeline;
 pub mod program;
 pub mod project;
 pub mod structures;
+pub mod summary;
 pub mod synth;
 pub mod textures;
 

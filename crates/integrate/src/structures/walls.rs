@@ -22,6 +22,9 @@ const LINE_BELOW: f64 = 0.4;
 /// A chain that divides nothing (its two sides are one face, or it dangles) is a wall only
 /// when at least this share of the typical wall thick (a spur or a wall running out).
 const SPUR_FROM: f64 = 0.6;
+/// An edge's fit stands for it when its mean distance to the chain is within this share of the
+/// wall's thickness (or a pixel).
+const FIT_WITHIN: f64 = 0.15;
 /// Arcs are drawn as chords subtending at most this angle.
 const CHORD_ANGLE: f64 = std::f64::consts::PI / 12.0;
 
@@ -272,12 +275,18 @@ fn chain_start(plan: &ParsedPlan, edges: &[usize]) -> usize {
 
 /// An edge from its `from` vertex to its `to` vertex: the straight line between them for a
 /// line fit (collinear with the fit's ends, which are the chain's ends projected), chords of
-/// the fitted arc, or the simplified skeleton when nothing was fitted.
+/// the fitted arc, or the simplified skeleton when nothing was fitted or the fit strays from
+/// the chain by more than `FIT_WITHIN` of the wall (one fit per edge: a chain that turns a
+/// corner without a vertex, as three sides of an enclosure drawn in one stroke, fits neither).
 fn edge_points(plan: &ParsedPlan, e: usize) -> Vec<[f64; 2]> {
     let edge = &plan.edges[e];
     let at = |v: usize| [plan.vertices[v].x, plan.vertices[v].y];
     let (a, b) = (at(edge.from), at(edge.to));
-    match &edge.fit {
+    let close = edge
+        .fit
+        .as_ref()
+        .filter(|f| f.error() <= (FIT_WITHIN * edge.thickness).max(1.0));
+    match close {
         Some(Fit::Line { .. }) => vec![a, b],
         Some(Fit::Arc {
             center,
