@@ -390,8 +390,8 @@ fn disc(b: &BulgeTower, w: usize, h: usize) -> Vec<usize> {
     let r = b.radius;
     let x0 = (cx - r).ceil().max(0.0) as usize;
     let y0 = (cy - r).ceil().max(0.0) as usize;
-    let x1 = ((cx + r).floor()).min(w as f64 - 1.0);
-    let y1 = ((cy + r).floor()).min(h as f64 - 1.0);
+    let x1 = (cx + r).floor().min(w as f64 - 1.0);
+    let y1 = (cy + r).floor().min(h as f64 - 1.0);
     if x1 < 0.0 || y1 < 0.0 {
         return Vec::new();
     }
