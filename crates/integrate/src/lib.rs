@@ -13,6 +13,8 @@
 //!   model; [`library::Library`] resolves the medieval library it imports.
 //! - [`pipeline::reconstruct`] runs all of it on a [`project::Project`], reading the files it
 //!   names through the caller's [`pipeline::Files`]: the commands are adapters over it.
+//! - [`agreement::measure`] compares the model seen from above with the plan's built area
+//!   (issue 25): IoU, precision, recall, rooms and towers present; stats.json carries it.
 //! - [`synth`] draws a synthetic project (plan and perspective façade photos with known answers).
 //!
 //! ```
@@ -36,6 +38,7 @@
 //! assert!(model.terminals().count() > 0);
 //! ```
 
+pub mod agreement;
 pub mod correspond;
 pub mod error;
 pub mod estimate;

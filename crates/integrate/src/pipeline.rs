@@ -358,6 +358,9 @@ pub struct Reconstruction {
     /// Every step's overlay: the plan's, then each façade photo's, then each Gothic photo's.
     pub overlays: Vec<Overlay>,
     pub exports: Exports,
+    /// The model seen from above against the plan's built area (issue 25; stats.json's
+    /// `agreement`).
+    pub agreement: crate::agreement::Agreement,
     /// Milliseconds per stage, in order (Gothic only when the project has Gothic photos).
     pub stages: Vec<(Stage, f64)>,
 }
@@ -475,6 +478,14 @@ pub fn reconstruct(
     progress(Progress::Started(Stage::Export));
     let t = Instant::now();
     let mut exports = export(&model, &textures, sample_width.unwrap_or(1.0))?;
+    // Issue 25: how well the model covers the plan it was built from, at the preview's detail.
+    let agreement = crate::agreement::measure(
+        &plan_stage.parsed,
+        &estimate,
+        &model,
+        &vsg::export::ExportOptions::default().tessellation,
+    );
+    exports.stats["agreement"] = agreement.summary();
     stages.push((Stage::Export, ms(t)));
     progress(Progress::Step);
     exports.stats["stages_ms"] = serde_json::Value::Object(
@@ -498,6 +509,7 @@ pub fn reconstruct(
         plan_svg: plan_stage.svg,
         overlays,
         exports,
+        agreement,
         stages,
     })
 }

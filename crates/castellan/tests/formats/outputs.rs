@@ -73,6 +73,7 @@ fn demo_stats_json_follows_its_schema() {
             stats,
         );
         assert!(stats["stages_ms"].is_object(), "{stats}");
+        assert!(stats["agreement"]["iou"].is_number(), "{stats}");
     }
 }
 
@@ -111,6 +112,7 @@ fn vsg_run_stats_json_follows_its_schema() {
     let stats = vsg_stats();
     assert_valid("stats", "vsg run --stats STATS.json", stats);
     assert!(stats.get("stages_ms").is_none(), "{stats}");
+    assert!(stats.get("agreement").is_none(), "{stats}");
 }
 
 #[test]

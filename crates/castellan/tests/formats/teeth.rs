@@ -159,7 +159,7 @@ fn facade_at(doc: &Value) -> (usize, usize) {
 }
 
 #[test]
-fn stats_schema_refuses_negative_counts_and_unknown_stages() {
+fn stats_schema_refuses_negative_counts_unknown_stages_and_bad_agreements() {
     let doc = demo().get("stats.json");
     assert_refused(
         "stats",
@@ -177,6 +177,16 @@ fn stats_schema_refuses_negative_counts_and_unknown_stages() {
         &with_key(doc, "/stages_ms", "render", json!(3.0)),
     );
     assert_refused("stats", "no volume", &without(doc, "", "volume"));
+    assert_refused(
+        "stats",
+        "an IoU above 1",
+        &with(doc, "/agreement/iou", json!(1.5)),
+    );
+    assert_refused(
+        "stats",
+        "an agreement without its tower count",
+        &without(doc, "/agreement", "towers"),
+    );
 }
 
 #[test]
