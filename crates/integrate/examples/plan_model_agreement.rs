@@ -139,6 +139,21 @@ fn main() {
         (p + a.towers_present(), n + a.towers.len())
     });
     println!("in all: rooms present {rp} / {r}, towers present {tp} / {t}");
+    // Where the recall goes: the plan's built pixels left bare, by label, over every plan.
+    let mut missed = [0usize; 11];
+    for a in &rows {
+        for (m, k) in missed.iter_mut().zip(a.missed_by_label) {
+            *m += k;
+        }
+    }
+    let total: usize = missed.iter().sum();
+    let by_label: Vec<String> = plan::label::Label::ALL
+        .iter()
+        .zip(missed)
+        .filter(|(_, k)| *k > 0)
+        .map(|(l, k)| format!("{} {:.0} %", l.name(), 100.0 * k as f64 / total.max(1) as f64))
+        .collect();
+    println!("built pixels left bare, by label: {}", by_label.join(", "));
 }
 
 /// The agreement of a case's reconstruction and its number of structures.

@@ -199,6 +199,9 @@ pub struct Agreement {
     pub plan_pixels: usize,
     pub model_pixels: usize,
     pub overlap_pixels: usize,
+    /// The plan's built pixels the model leaves bare, by plan label (indexed as
+    /// [`Label::ALL`]): where the recall is lost.
+    pub missed_by_label: [usize; 11],
     /// The plan's rooms (tower_room, great_hall, chapel, unknown_room): 4-connected regions of
     /// one room label, which are the rooms' faces as the label image holds them (a
     /// [`plan::PlanFace`] keeps its area, not its pixels).
@@ -231,6 +234,43 @@ impl Agreement {
     }
 }
 
+/// The legend of [`overlay`].
+pub const OVERLAY_LEGEND: &str = "grey: built on the plan and in the model; red: built on the plan (walls, towers, rooms) but not in the model; blue: in the model but not built on the plan; white: neither";
+
+/// The agreement as a picture at the plan's size, for the user to see what the model misses
+/// and what it adds ([`OVERLAY_LEGEND`]).
+pub fn overlay(labels: &[u8], view: &TopView) -> image::RgbImage {
+    image::RgbImage::from_fn(view.width, view.height, |x, y| {
+        let i = (y * view.width + x) as usize;
+        let built = labels.get(i).is_some_and(|&l| is_built(l));
+        let covered = view.owner[i] != TopView::EMPTY;
+        image::Rgb(match (built, covered) {
+            (true, true) => [150, 150, 150],
+            (true, false) => [220, 40, 40],
+            (false, true) => [40, 90, 230],
+            (false, false) => [255, 255, 255],
+        })
+    })
+}
+
+/// The model seen from above at `plan`'s grid, through the estimate's scale and structure ids.
+pub fn top_view(
+    plan: &ParsedPlan,
+    estimate: &Estimate,
+    model: &Model,
+    tessellation: &Tessellation,
+) -> TopView {
+    let ids: Vec<String> = estimate.structures.iter().map(|s| s.id.clone()).collect();
+    TopView::of(
+        model,
+        &ids,
+        estimate.scale.units_per_pixel,
+        plan.width,
+        plan.height,
+        tessellation,
+    )
+}
+
 /// The agreement of `model` with `plan`, through the estimate's scale and structure ids.
 pub fn measure(
     plan: &ParsedPlan,
@@ -239,14 +279,7 @@ pub fn measure(
     tessellation: &Tessellation,
 ) -> Agreement {
     let ids: Vec<String> = estimate.structures.iter().map(|s| s.id.clone()).collect();
-    let view = TopView::of(
-        model,
-        &ids,
-        estimate.scale.units_per_pixel,
-        plan.width,
-        plan.height,
-        tessellation,
-    );
+    let view = top_view(plan, estimate, model, tessellation);
     compare(&plan.labels, &plan.bulge_towers, &view, &ids)
 }
 
@@ -280,9 +313,15 @@ fn ratio(part: usize, whole: usize) -> f64 {
 pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[String]) -> Agreement {
     let (w, h) = (view.width as usize, view.height as usize);
     let (mut plan_px, mut model_px, mut both) = (0, 0, 0);
+    let mut missed_by_label = [0usize; 11];
     for (l, o) in labels.iter().zip(&view.owner) {
         let built = is_built(*l);
         let covered = *o != TopView::EMPTY;
+        if built && !covered {
+            if let Some(m) = missed_by_label.get_mut(*l as usize) {
+                *m += 1;
+            }
+        }
         plan_px += usize::from(built);
         model_px += usize::from(covered);
         both += usize::from(built && covered);
@@ -338,6 +377,7 @@ pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[Stri
         plan_pixels: plan_px,
         model_pixels: model_px,
         overlap_pixels: both,
+        missed_by_label,
         rooms,
         towers,
     }

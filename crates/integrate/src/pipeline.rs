@@ -479,13 +479,29 @@ pub fn reconstruct(
     let t = Instant::now();
     let mut exports = export(&model, &textures, sample_width.unwrap_or(1.0))?;
     // Issue 25: how well the model covers the plan it was built from, at the preview's detail.
-    let agreement = crate::agreement::measure(
+    let view = crate::agreement::top_view(
         &plan_stage.parsed,
         &estimate,
         &model,
         &vsg::export::ExportOptions::default().tessellation,
     );
+    let ids: Vec<String> = estimate.structures.iter().map(|s| s.id.clone()).collect();
+    let parsed = &plan_stage.parsed;
+    let agreement = crate::agreement::compare(&parsed.labels, &parsed.bulge_towers, &view, &ids);
     exports.stats["agreement"] = agreement.summary();
+    overlays.push(Overlay {
+        name: "overlays/plan_model.png".into(),
+        caption: Some(format!(
+            "The model from above against the plan's built area (issue 25): IoU {:.3}, {} of {} rooms and {} of {} towers built — {}",
+            agreement.iou,
+            agreement.rooms_present(),
+            agreement.rooms.len(),
+            agreement.towers_present(),
+            agreement.towers.len(),
+            crate::agreement::OVERLAY_LEGEND
+        )),
+        picture: Picture::Rgb(crate::agreement::overlay(&parsed.labels, &view)),
+    });
     stages.push((Stage::Export, ms(t)));
     progress(Progress::Step);
     exports.stats["stages_ms"] = serde_json::Value::Object(
