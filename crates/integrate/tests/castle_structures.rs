@@ -95,13 +95,14 @@ fn the_synthetic_castle_is_a_keep_two_towers_and_a_curtain_in_two_runs() {
         }
     }
     // The enclosure's perimeter less the four stretches, a tower's radius each, inside the
-    // two corner towers (centreline radius 36 px); the skeleton cuts the two free corners by
-    // a little under a metre each.
+    // two corner towers (centreline radius 36 px); the skeleton meets each tower's ring a
+    // little inside the ring's centreline (measured: 1.8 m in all).
     let [x0, y0, x1, y1] = castle.enclosure;
     let perimeter = 2.0 * ((x1 - x0) + (y1 - y0)) * s;
     let r = castle.towers[0].1 * s;
+    eprintln!("curtain {length:.2} m; perimeter less the towers' stretches {:.2} m", perimeter - 4.0 * r);
     assert!(
-        length > perimeter - 4.0 * r - 2.0 * 1.0 - 0.5 && length < perimeter - 4.0 * r,
+        length > perimeter - 4.0 * r - 2.5 && length < perimeter - 4.0 * r,
         "curtain {length:.1} m, perimeter {perimeter:.1} m"
     );
 }

@@ -320,16 +320,52 @@ fn edge_points(plan: &ParsedPlan, e: usize) -> Vec<[f64; 2]> {
                 .iter()
                 .map(|&(x, y)| [f64::from(x), f64::from(y)])
                 .collect();
-            // Within half the wall: the skeleton's wiggles inside a wall are not its shape.
             let mut out = vec![a];
-            let inner = simplify(&chain, (0.5 * edge.thickness).max(1.5));
-            if inner.len() > 2 {
-                out.extend_from_slice(&inner[1..inner.len() - 1]);
-            }
+            out.extend(corners(&chain, (0.5 * edge.thickness).max(1.5)));
             out.push(b);
             out
         }
     }
+}
+
+/// The inner corners of a chain that turns without a vertex: the chain is cut where it strays
+/// from a straight line by more than `eps` (half the wall: the skeleton's wiggles inside a
+/// wall are not its shape, Douglas–Peucker), a line is fitted to each piece (§5.1.5's line
+/// fit), and each corner is where two neighbouring lines meet — the skeleton itself rounds a
+/// corner off, so its own point there lies inside the wall's corner.
+fn corners(chain: &[[f64; 2]], eps: f64) -> Vec<[f64; 2]> {
+    let kept = simplify(chain, eps);
+    if kept.len() <= 2 {
+        return Vec::new();
+    }
+    // The indices of the kept points along the chain (they are its own points, in order).
+    let mut at = Vec::with_capacity(kept.len());
+    let mut i = 0;
+    for k in &kept {
+        while i < chain.len() && chain[i] != *k {
+            i += 1;
+        }
+        at.push(i.min(chain.len() - 1));
+    }
+    let lines: Vec<Option<(f64, f64, f64)>> = at
+        .windows(2)
+        .map(|w| {
+            let piece = &chain[w[0]..=w[1]];
+            plan::fit::fit_line(piece).map(|(a, b, c, _)| (a, b, c))
+        })
+        .collect();
+    (1..kept.len() - 1)
+        .map(|k| match (lines[k - 1], lines[k]) {
+            (Some((a1, b1, c1)), Some((a2, b2, c2))) => {
+                let det = a1 * b2 - a2 * b1;
+                let meet = [(b1 * c2 - b2 * c1) / det, (a2 * c1 - a1 * c2) / det];
+                // Nearly parallel lines meet far away: keep the chain's point.
+                let near = (meet[0] - kept[k][0]).hypot(meet[1] - kept[k][1]) <= 4.0 * eps;
+                if det.abs() > 0.05 && near { meet } else { kept[k] }
+            }
+            _ => kept[k],
+        })
+        .collect()
 }
 
 /// Whether the castle's surroundings lie on the right of the centreline as the drawing is seen
