@@ -80,7 +80,11 @@ fn demo_reconstructs_coucy_from_its_real_drawings() {
     // The curtain in a few runs from tower to tower, not fragments; no wall is a tower (the
     // donjon's moat ring is curtain, not a 20 m tower wall).
     let curtain = with_role("curtain");
-    assert!((2..=6).contains(&curtain.len()), "{} curtain runs", curtain.len());
+    assert!(
+        (2..=6).contains(&curtain.len()),
+        "{} curtain runs",
+        curtain.len()
+    );
     assert!(
         structures
             .iter()

@@ -151,7 +151,13 @@ fn main() {
         .iter()
         .zip(missed)
         .filter(|(_, k)| *k > 0)
-        .map(|(l, k)| format!("{} {:.0} %", l.name(), 100.0 * k as f64 / total.max(1) as f64))
+        .map(|(l, k)| {
+            format!(
+                "{} {:.0} %",
+                l.name(),
+                100.0 * k as f64 / total.max(1) as f64
+            )
+        })
         .collect();
     println!("built pixels left bare, by label: {}", by_label.join(", "));
 }

@@ -317,10 +317,11 @@ pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[Stri
     for (l, o) in labels.iter().zip(&view.owner) {
         let built = is_built(*l);
         let covered = *o != TopView::EMPTY;
-        if built && !covered {
-            if let Some(m) = missed_by_label.get_mut(*l as usize) {
-                *m += 1;
-            }
+        if built
+            && !covered
+            && let Some(m) = missed_by_label.get_mut(*l as usize)
+        {
+            *m += 1;
         }
         plan_px += usize::from(built);
         model_px += usize::from(covered);

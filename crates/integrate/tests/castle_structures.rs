@@ -53,7 +53,11 @@ fn the_synthetic_castle_is_a_keep_two_towers_and_a_curtain_in_two_runs() {
     }
     assert_eq!(by_role[&Role::Keep], ["keep1"], "{by_role:?}");
     assert_eq!(by_role[&Role::Tower], ["tower1", "tower2"], "{by_role:?}");
-    assert_eq!(by_role[&Role::Curtain], ["curtain1", "curtain2"], "{by_role:?}");
+    assert_eq!(
+        by_role[&Role::Curtain],
+        ["curtain1", "curtain2"],
+        "{by_role:?}"
+    );
     assert_eq!(e.structures.len(), 5, "{by_role:?}");
     let s = castle.metres_per_pixel;
     let keep = e.structures.iter().find(|x| x.role == Role::Keep).unwrap();
@@ -83,7 +87,11 @@ fn the_synthetic_castle_is_a_keep_two_towers_and_a_curtain_in_two_runs() {
             c.id
         );
         for p in centerline {
-            assert!(outside(&castle, *p).abs() < 0.3, "{}: {p:?} off the wall", c.id);
+            assert!(
+                outside(&castle, *p).abs() < 0.3,
+                "{}: {p:?} off the wall",
+                c.id
+            );
         }
         for [a, b] in c.footprint.pieces() {
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
@@ -91,7 +99,11 @@ fn the_synthetic_castle_is_a_keep_two_towers_and_a_curtain_in_two_runs() {
             length += len;
             let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
             let left = [m[0] + dy / len * 2.0, m[1] - dx / len * 2.0];
-            assert!(outside(&castle, left) > 1.0, "{}: field not on the left", c.id);
+            assert!(
+                outside(&castle, left) > 1.0,
+                "{}: field not on the left",
+                c.id
+            );
         }
     }
     // The enclosure's perimeter less the four stretches, a tower's radius each, inside the
@@ -100,7 +112,10 @@ fn the_synthetic_castle_is_a_keep_two_towers_and_a_curtain_in_two_runs() {
     let [x0, y0, x1, y1] = castle.enclosure;
     let perimeter = 2.0 * ((x1 - x0) + (y1 - y0)) * s;
     let r = castle.towers[0].1 * s;
-    eprintln!("curtain {length:.2} m; perimeter less the towers' stretches {:.2} m", perimeter - 4.0 * r);
+    eprintln!(
+        "curtain {length:.2} m; perimeter less the towers' stretches {:.2} m",
+        perimeter - 4.0 * r
+    );
     assert!(
         length > perimeter - 4.0 * r - 2.5 && length < perimeter - 4.0 * r,
         "curtain {length:.1} m, perimeter {perimeter:.1} m"
@@ -140,11 +155,20 @@ fn every_parapet_stands_on_the_field_side_of_its_curtain() {
         let out = outside(&castle, [c[0], c[2]]);
         if symbol == "curtainParapet" {
             parapets += 1;
-            assert!(out > 0.0, "a parapet {out:.2} m inside the enclosure at {c:?}");
+            assert!(
+                out > 0.0,
+                "a parapet {out:.2} m inside the enclosure at {c:?}"
+            );
         } else {
             walks += 1;
-            assert!(out < 0.0, "a wall walk {out:.2} m outside the enclosure at {c:?}");
+            assert!(
+                out < 0.0,
+                "a wall walk {out:.2} m outside the enclosure at {c:?}"
+            );
         }
     }
-    assert!(parapets >= 4 && parapets == walks, "{parapets} parapets, {walks} walks");
+    assert!(
+        parapets >= 4 && parapets == walks,
+        "{parapets} parapets, {walks} walks"
+    );
 }

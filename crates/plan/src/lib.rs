@@ -190,6 +190,17 @@ pub struct PlanEdge {
     pub thickness: f64,
 }
 
+/// A wall chain the §5.1.6 simplification prunes (a leaf of the skeleton's graph: a wall
+/// running out into the field, a solid mass drawn hatched, a stub): chapter 5 neither labels
+/// nor fits it, but the model builds the thick ones (issue 25).
+#[derive(Debug, Clone)]
+pub struct Spur {
+    /// Skeleton pixels, in order.
+    pub points: Vec<(u32, u32)>,
+    /// Wall thickness, pixels, measured as an edge's is.
+    pub thickness: f64,
+}
+
 /// An open space bounded by walls.
 #[derive(Debug, Clone)]
 pub struct PlanFace {
@@ -219,6 +230,8 @@ pub struct ParsedPlan {
     pub towers: usize,
     /// Towers found as bulges of the castle's outline, without a room ([`bulges::find`]).
     pub bulge_towers: Vec<bulges::BulgeTower>,
+    /// The wall chains §5.1.6 prunes ([`Spur`]).
+    pub spurs: Vec<Spur>,
     pub pre: binarize::PreStats,
     /// What the pipeline could not find (partial results say so here).
     pub warnings: Vec<String>,
@@ -340,6 +353,19 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
             }
         })
         .collect();
+    let spurs = p
+        .spurs
+        .into_iter()
+        .map(|s| {
+            let mut points: Vec<(u32, u32)> =
+                s.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
+            points.dedup();
+            Spur {
+                points,
+                thickness: s.thickness * inv,
+            }
+        })
+        .collect();
     let faces = p
         .faces
         .into_iter()
@@ -374,6 +400,7 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
                 radius: t.radius * inv,
             })
             .collect(),
+        spurs,
         pre: p.pre,
         warnings: p.warnings,
         scale_bar: p.scale_bar,
@@ -445,7 +472,7 @@ fn parse_grey(
     thin::thin(&mut skel);
     let full = graph::vectorise(&skel);
     let (face_of, nf) = graph::faces(&skel);
-    let (g, _) = full.simplify();
+    let (g, parts) = full.simplify();
 
     // Distances: inside walls to the open space, and inside open space to the walls (`bin`
     // is 0 or 255 only).
@@ -472,13 +499,33 @@ fn parse_grey(
             info.max_inset = info.max_inset.max(f64::from(in_open.get_pixel(x, y)[0]));
         }
     }
+    // Twice the mean distance from a chain to the wall's edge, less the centre pixel.
+    let thickness_of = |points: &[(u32, u32)]| {
+        let sum: f64 = points
+            .iter()
+            .map(|&(x, y)| f64::from(in_wall.get_pixel(x, y)[0]))
+            .sum();
+        (2.0 * sum / points.len().max(1) as f64 - 1.0).max(1.0)
+    };
+    let mut kept = vec![false; full.edges.len()];
+    for &k in parts.iter().flatten() {
+        kept[k] = true;
+    }
+    let spurs: Vec<Spur> = full
+        .edges
+        .iter()
+        .zip(&kept)
+        .filter(|(e, k)| !**k && e.points.len() > 1)
+        .map(|(e, _)| Spur {
+            points: e.points.clone(),
+            thickness: thickness_of(&e.points),
+        })
+        .collect();
     let mut edge_faces = Vec::with_capacity(g.edges.len());
     let mut thickness = Vec::with_capacity(g.edges.len());
     for e in &g.edges {
         let mut fs: Vec<usize> = Vec::new();
-        let mut sum = 0.0;
         for &(x, y) in &e.points {
-            sum += f64::from(in_wall.get_pixel(x, y)[0]);
             for (dx, dy) in [(1i32, 0i32), (-1, 0), (0, 1), (0, -1)] {
                 let (nx, ny) = (x as i32 + dx, y as i32 + dy);
                 if nx < 0 || ny < 0 || nx >= w as i32 || ny >= h as i32 {
@@ -491,7 +538,7 @@ fn parse_grey(
             }
         }
         edge_faces.push(fs);
-        thickness.push((2.0 * sum / e.points.len().max(1) as f64 - 1.0).max(1.0));
+        thickness.push(thickness_of(&e.points));
     }
     let scene = Scene {
         walls: &walls,
@@ -604,6 +651,7 @@ fn parse_grey(
         walls,
         towers,
         bulge_towers,
+        spurs,
         pre,
         warnings,
         scale_bar: None,

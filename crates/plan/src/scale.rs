@@ -213,6 +213,7 @@ mod tests {
             walls: crate::thin::Mask::new(400, 300),
             towers: 0,
             bulge_towers: vec![],
+            spurs: vec![],
             pre: Default::default(),
             warnings: vec![],
             scale_bar: None,

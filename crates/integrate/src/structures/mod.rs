@@ -169,7 +169,11 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                         rotation: *angle,
                     },
                     Kind::HollowRectangular,
-                    if loose { "loose rectangle" } else { "rectangle" },
+                    if loose {
+                        "loose rectangle"
+                    } else {
+                        "rectangle"
+                    },
                     *error,
                 ),
                 _ => return None,
@@ -194,9 +198,9 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
         .filter(|(_, b)| b.radius > 0.5)
         .filter(|(_, b)| {
             let c = [b.center[0] * s, b.center[1] * s];
-            !rooms.iter().any(|r| {
-                plan.faces[r.face].label == Label::TowerRoom && contains(&r.footprint, c)
-            })
+            !rooms
+                .iter()
+                .any(|r| plan.faces[r.face].label == Label::TowerRoom && contains(&r.footprint, c))
         })
         .collect();
     let candidates: Vec<Candidate> = rooms
@@ -395,7 +399,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             provenance,
         });
     }
-    for run in walls::runs(plan, &owned, &tower_owned) {
+    let runs = walls::runs(plan, &owned, &tower_owned);
+    for run in runs.into_iter().chain(walls::spur_runs(plan)) {
         if run.points.len() < 2 {
             continue;
         }
@@ -410,15 +415,26 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             "footprint".to_string(),
             Provenance::new(
                 image,
-                format!(
-                    "§5.1.5 fits of plan edges {:?} joined into one run (issue 25: a line between vertices, arcs as chords, collinear pieces merged){}",
-                    run.edges,
-                    if run.role == Role::Curtain {
-                        "; it borders the castle's surroundings, which lie on its left"
-                    } else {
-                        ""
-                    }
-                ),
+                if run.spur {
+                    format!(
+                        "a wall chain §5.1.6 prunes (a leaf of the skeleton's graph: a wall running out, a solid mass), kept for its thickness (issue 25), its straight pieces fitted{}",
+                        if run.role == Role::Curtain {
+                            "; the plan labels it outer or tower wall"
+                        } else {
+                            ""
+                        }
+                    )
+                } else {
+                    format!(
+                        "§5.1.5 fits of plan edges {:?} joined into one run (issue 25: a line between vertices, arcs as chords, collinear pieces merged){}",
+                        run.edges,
+                        if run.role == Role::Curtain {
+                            "; it borders the castle's surroundings, which lie on its left"
+                        } else {
+                            ""
+                        }
+                    )
+                },
                 None,
             ),
         );

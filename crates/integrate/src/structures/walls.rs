@@ -40,6 +40,8 @@ pub(super) struct Run {
     pub closed: bool,
     /// Length-weighted median of its edges' thicknesses (pixels, §5.1.4).
     pub thickness: f64,
+    /// A chain §5.1.6 prunes ([`plan::Spur`]), not an edge of the plan's graph.
+    pub spur: bool,
 }
 
 /// What a plan edge becomes.
@@ -138,8 +140,10 @@ pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> V
                 .flat_map(|&e| faces[e].iter().copied())
                 .filter(|&f| plan.faces[f].label != Label::CastleSurroundings)
                 .collect();
-            let lone_room =
-                closed && !inner.is_empty() && inner.iter().all(|&f| f == inner[0]) && is_room(plan.faces[inner[0]].label);
+            let lone_room = closed
+                && !inner.is_empty()
+                && inner.iter().all(|&f| f == inner[0])
+                && is_room(plan.faces[inner[0]].label);
             if lone_room && edges.iter().all(|&e| owned[e]) {
                 continue;
             }
@@ -261,7 +265,68 @@ fn run(plan: &ParsedPlan, role: Role, edges: Vec<usize>, closed: bool) -> Run {
         points,
         closed,
         thickness,
+        spur: false,
     }
+}
+
+/// A spur is a wall when it is as thick as a wall must be to stand alone (`SPUR_FROM` of the
+/// typical wall) and longer than this many thicknesses — the shorter ones are the skeleton's
+/// whiskers at a thick wall's corners and ends.
+const SPUR_LENGTH: f64 = 2.0;
+
+/// The spurs that are walls (issue 25: §5.1.6 prunes every leaf of the graph, among them the
+/// walls running out into the field and the buildings drawn as solid masses): curtain when the
+/// plan labels them outer or tower wall — an outwork's wall, crenellated — else inner walls.
+pub(super) fn spur_runs(plan: &ParsedPlan) -> Vec<Run> {
+    let typical = typical_thickness(plan);
+    plan.spurs
+        .iter()
+        .filter(|s| s.thickness >= SPUR_FROM * typical)
+        .filter_map(|spur| {
+            let chain: Vec<[f64; 2]> = spur
+                .points
+                .iter()
+                .map(|&(x, y)| [f64::from(x), f64::from(y)])
+                .collect();
+            let length: f64 = chain
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .sum();
+            if length < SPUR_LENGTH * spur.thickness {
+                return None;
+            }
+            let outer = spur
+                .points
+                .iter()
+                .filter(|&&(x, y)| {
+                    matches!(
+                        plan.label_at(x, y),
+                        Label::CastleOuterWall | Label::TowerWall
+                    )
+                })
+                .count();
+            let role = if 2 * outer > spur.points.len() {
+                Role::Curtain
+            } else {
+                Role::Wall
+            };
+            let (first, last) = (*chain.first()?, *chain.last()?);
+            let mut points = vec![first];
+            points.extend(corners(&chain, (0.5 * spur.thickness).max(1.5)));
+            points.push(last);
+            if role == Role::Curtain && field_on_right(plan, &points, false, spur.thickness) {
+                points.reverse();
+            }
+            Some(Run {
+                role,
+                edges: Vec::new(),
+                points,
+                closed: false,
+                thickness: spur.thickness,
+                spur: true,
+            })
+        })
+        .collect()
 }
 
 /// The vertex a chain of edges starts from.
@@ -361,7 +426,11 @@ fn corners(chain: &[[f64; 2]], eps: f64) -> Vec<[f64; 2]> {
                 let meet = [(b1 * c2 - b2 * c1) / det, (a2 * c1 - a1 * c2) / det];
                 // Nearly parallel lines meet far away: keep the chain's point.
                 let near = (meet[0] - kept[k][0]).hypot(meet[1] - kept[k][1]) <= 4.0 * eps;
-                if det.abs() > 0.05 && near { meet } else { kept[k] }
+                if det.abs() > 0.05 && near {
+                    meet
+                } else {
+                    kept[k]
+                }
             }
             _ => kept[k],
         })
