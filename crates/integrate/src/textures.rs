@@ -89,7 +89,8 @@ pub(crate) fn facade_textures(estimate: &mut Estimate, photos: &[FacadeEstimate]
 /// One wall sample per photo with wall training boxes: the largest rectangle of plain wall
 /// (wall in the façade model, wall by the classifier, inside the mapped façade) no longer
 /// than [`MAX_ASPECT`] times its width, or the user's largest wall box when no such stretch
-/// is [`MIN_SAMPLE_SIDE`] pixels across; resampled to power-of-two sides, with its real size
+/// is [`MIN_SAMPLE_SIDE`] pixels across; made to tile without seams ([`seamless`]) and
+/// resampled to power-of-two sides, with its real size
 /// in model units from the façade's scale (s horizontally, s · s_yn vertically, §6.1.2) or
 /// the photo's measured metres per pixel. Earlier samples were the wall boxes themselves,
 /// 15–40 px crops tiled once per metre: a few stones stretched over a metre each, repeated
@@ -124,6 +125,7 @@ pub(crate) fn wall_samples(estimate: &Estimate, photos: &[FacadeEstimate]) -> Ve
         let Some(image) = region.and_then(|r| crop(&p.rectified, r)) else {
             continue;
         };
+        let image = seamless(&image);
         let size = scale.map(|[sx, sy]| {
             [
                 f64::from(image.width()) * sx,
@@ -182,6 +184,40 @@ pub(crate) fn box_size(
     };
     let size = [extent(0) * sx, extent(1) * sy];
     size.iter().all(|v| v.is_normal()).then_some(size)
+}
+
+/// `image` made to tile without seams: its last eighth across (and up) is folded onto its
+/// start, fading from the far side's pixels at the first column (so the repeat continues
+/// from the last column as the photo did) to the image's own at the eighth; the result is
+/// that eighth narrower (and shorter). Sides under 8 pixels are left as they are.
+fn seamless(image: &RgbImage) -> RgbImage {
+    let fold = |img: &RgbImage, across: bool| -> RgbImage {
+        let (w, h) = img.dimensions();
+        let n = if across { w } else { h };
+        let m = n / 8;
+        if m == 0 {
+            return img.clone();
+        }
+        let keep = n - m;
+        let (ow, oh) = if across { (keep, h) } else { (w, keep) };
+        RgbImage::from_fn(ow, oh, |x, y| {
+            let k = if across { x } else { y };
+            let here = *img.get_pixel(x, y);
+            if k >= m {
+                return here;
+            }
+            let far = if across {
+                *img.get_pixel(x + keep, y)
+            } else {
+                *img.get_pixel(x, y + keep)
+            };
+            let t = f64::from(k) / f64::from(m);
+            image::Rgb(std::array::from_fn(|c| {
+                (f64::from(far[c]) * (1.0 - t) + f64::from(here[c]) * t).round() as u8
+            }))
+        })
+    };
+    fold(&fold(image, true), false)
 }
 
 /// The largest rectangle [x0, y0, x1, y1] (pixels, end exclusive) of pixels inside `within`
@@ -315,6 +351,24 @@ mod tests {
     }
 
     #[test]
+    fn a_seamless_sample_continues_across_its_repeat() {
+        // 16 × 8 with a colour per pixel: an eighth (2 columns, 1 row) is folded onto the start.
+        let img = RgbImage::from_fn(16, 8, |x, y| image::Rgb([x as u8 * 10, y as u8 * 20, 5]));
+        let out = seamless(&img);
+        assert_eq!(out.dimensions(), (14, 7));
+        // The first column is the far side's: the repeat continues from column 13 to 14.
+        assert_eq!(out.get_pixel(0, 3), &image::Rgb([140, 60, 5]));
+        // Halfway through the fold: half column 15, half column 1.
+        assert_eq!(out.get_pixel(1, 3), &image::Rgb([80, 60, 5]));
+        assert_eq!(out.get_pixel(13, 3), &image::Rgb([130, 60, 5]));
+        // Up the image the same way: row 0 is the photo's row 7.
+        assert_eq!(out.get_pixel(5, 0), &image::Rgb([50, 140, 5]));
+        assert_eq!(out.get_pixel(5, 6), &image::Rgb([50, 120, 5]));
+        // Too small to fold: unchanged.
+        assert_eq!(seamless(&RgbImage::new(7, 5)).dimensions(), (7, 5));
+    }
+
+    #[test]
     fn textures_get_power_of_two_sides() {
         let sized = |w, h, max| power_of_two(&RgbImage::new(w, h), max).dimensions();
         assert_eq!(sized(300, 120, 512), (256, 128));
@@ -411,17 +465,19 @@ mod tests {
         let t = &samples[0];
         assert_eq!(t.name, "textures/wall_keep.png");
         // Plain wall: x 40..180 (the classifier), y 10..110, minus the window x 60..100 ×
-        // y 30..60: the largest piece is x 100..180 × y 10..110 (80 × 100 px), 4 m × 5 m.
+        // y 30..60: the largest piece is x 100..180 × y 10..110 (80 × 100 px); folded to tile
+        // (an eighth off each way) 70 × 88 px, 3.5 m × 4.4 m.
         let [sw, sh] = t.size.unwrap();
         assert!(
-            (sw - 4.0).abs() < 1e-9 && (sh - 5.0).abs() < 1e-9,
+            (sw - 3.5).abs() < 1e-9 && (sh - 4.4).abs() < 1e-9,
             "{sw} × {sh}"
         );
-        // 80 × 100 px → 64 × 128 texels; the colours say where it was cut from.
-        assert_eq!(t.image.dimensions(), (64, 128));
+        // 70 × 88 px → 64 × 64 texels; the colours say where it was cut from: the first texel
+        // continues the piece's last column and row (x 170, y 98).
+        assert_eq!(t.image.dimensions(), (64, 64));
         let corner = t.image.get_pixel(0, 0);
         assert!(
-            (99..=101).contains(&corner[0]) && (9..=11).contains(&corner[1]),
+            (160..=172).contains(&corner[0]) && (88..=100).contains(&corner[1]),
             "{corner:?}"
         );
         // The user's wall box in photo pixels, at the same scale: 20 × 20 px, 1 m × 1 m.
