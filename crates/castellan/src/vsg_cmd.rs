@@ -129,6 +129,8 @@ fn read_texture(path: &Path) -> Result<vsg::export::TextureImage> {
     Ok(vsg::export::TextureImage {
         bytes,
         mime_type: mime_type.into(),
+        // A file named on the command line has no known real size: it repeats every unit.
+        size: None,
     })
 }
 

@@ -22,7 +22,7 @@ use crate::estimate::Estimate;
 use crate::gothic::{GothicFacadeEstimate, GothicPhoto, estimate_gothic};
 use crate::photo::{FacadeEstimate, FacadePhoto, crop, estimate_facade};
 use crate::project::{FacadeEntry, GothicEntry, Project, TrainingSource};
-use crate::textures::{Texture, safe_stem, wall_samples};
+use crate::textures::{MAX_SAMPLE_SIDE, Texture, box_size, power_of_two, safe_stem, wall_samples};
 use crate::{Inputs, IntegrateError, integrate};
 
 /// The files a project names (the plan, photos, TRAINING.json, LINES.json), read by the
@@ -444,8 +444,8 @@ pub fn reconstruct(
     })?;
     let estimate = integrated.estimate;
     let mut textures = integrated.textures;
-    let (mut samples, sample_width) = wall_samples(&estimate, &estimates);
-    samples.extend(texture_samples(project, files)?);
+    let mut samples = wall_samples(&estimate, &estimates);
+    samples.extend(texture_samples(project, files, &estimate, &estimates)?);
     let program_options = crate::program::Options {
         wall_textures: samples.iter().map(|t| t.name.clone()).collect(),
         ..Default::default()
@@ -477,7 +477,8 @@ pub fn reconstruct(
 
     progress(Progress::Started(Stage::Export));
     let t = Instant::now();
-    let mut exports = export(&model, &textures, sample_width.unwrap_or(1.0))?;
+    // Textures of unknown real size repeat once a metre.
+    let mut exports = export(&model, &textures, estimate.scale.units_per_metre)?;
     // Issue 25: how well the model covers the plan it was built from, at the preview's detail.
     let view = crate::agreement::top_view(
         &plan_stage.parsed,
@@ -530,8 +531,14 @@ pub fn reconstruct(
     })
 }
 
-/// The user's texture samples ([[texture]]): crops of boxes in photos.
-fn texture_samples(project: &Project, files: &impl Files) -> Result<Vec<Texture>, PipelineError> {
+/// The user's texture samples ([[texture]]): crops of boxes in photos, at power-of-two sizes,
+/// with their real size when the photo is a façade of known scale.
+fn texture_samples(
+    project: &Project,
+    files: &impl Files,
+    estimate: &Estimate,
+    photos: &[FacadeEstimate],
+) -> Result<Vec<Texture>, PipelineError> {
     let mut out = Vec::new();
     for (i, t) in project.textures.iter().enumerate() {
         let entry = format!("[[texture]] #{} (image = \"{}\")", i + 1, t.image);
@@ -542,7 +549,8 @@ fn texture_samples(project: &Project, files: &impl Files) -> Result<Vec<Texture>
             })?;
             out.push(Texture {
                 name: format!("textures/sample_{}_{}.png", i + 1, k + 1),
-                image,
+                image: power_of_two(&image, MAX_SAMPLE_SIDE),
+                size: box_size(estimate, photos, &t.image, *b),
             });
         }
     }
@@ -569,6 +577,7 @@ fn export(
             vsg::export::TextureImage {
                 bytes: bytes.clone(),
                 mime_type: "image/png".into(),
+                size: t.size,
             },
         );
         pngs.push((t.name.clone(), bytes));

@@ -82,6 +82,34 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
         let texture = f.texture.as_ref().unwrap();
         assert!(r.textures.iter().any(|t| &t.name == texture), "{texture}");
     }
+    // Every texture mipmaps in any viewer (power-of-two sides), and each photo's wall sample
+    // knows its real size: metres, a few of them, not a crop tiled once a metre (issue 25).
+    for t in &r.textures {
+        let (w, h) = t.image.dimensions();
+        assert!(
+            w.is_power_of_two() && h.is_power_of_two(),
+            "{}: {w} × {h}",
+            t.name
+        );
+    }
+    let samples: Vec<_> = r
+        .textures
+        .iter()
+        .filter(|t| t.name.starts_with("textures/wall_"))
+        .collect();
+    assert_eq!(samples.len(), 2, "one sample a photo");
+    let per_metre = r.estimate.scale.units_per_metre;
+    for t in samples {
+        let [w, h] = t
+            .size
+            .expect("a mapped photo's sample has a real size")
+            .map(|v| v / per_metre);
+        assert!(
+            (1.0..40.0).contains(&w) && (1.0..40.0).contains(&h),
+            "{}: {w} × {h} m",
+            t.name
+        );
+    }
 
     let names: Vec<String> = r.files().unwrap().into_iter().map(|(n, _)| n).collect();
     for expected in [

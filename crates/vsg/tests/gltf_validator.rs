@@ -355,6 +355,7 @@ fn png(width: u32, height: u32) -> TextureImage {
     TextureImage {
         bytes: bytes.into_inner(),
         mime_type: "image/png".into(),
+        size: None,
     }
 }
 
@@ -383,6 +384,12 @@ fn textured_model_with_embedded_images_is_valid() {
     );
     let mut textures = Textures::new();
     textures.insert("brick.png".into(), png(4, 4));
-    textures.insert("stone.png".into(), png(3, 5));
+    textures.insert(
+        "stone.png".into(),
+        TextureImage {
+            size: Some([2.5, 1.25]),
+            ..png(3, 5)
+        },
+    );
     assert_valid_with("textured", &t.0, &textures);
 }

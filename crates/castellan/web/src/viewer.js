@@ -191,12 +191,23 @@ export function showModel(container, outline, source, estimate) {
     // A horizontal cut: everything above the plane is clipped away, so rooms show from above.
     renderer.localClippingEnabled = true;
     const cut = new THREE.Plane(new THREE.Vector3(0, -1, 0), box.max.y);
+    // Walls seen at a grazing angle or from afar cover many texels per pixel: trilinear
+    // mipmaps (the glb's sampler asks for them; set here too for files that do not) and the
+    // GPU's anisotropic filtering keep tiled stone from turning into moiré and static.
+    const anisotropy = renderer.capabilities.getMaxAnisotropy();
     model.traverse((o) => {
       if (!o.isMesh) return;
       for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
         m.clippingPlanes = [cut];
         // The inside faces of a cut wall show instead of a hole.
         m.side = THREE.DoubleSide;
+        if (m.map) {
+          m.map.generateMipmaps = true;
+          m.map.minFilter = THREE.LinearMipmapLinearFilter;
+          m.map.magFilter = THREE.LinearFilter;
+          m.map.anisotropy = anisotropy;
+          m.map.needsUpdate = true;
+        }
       }
     });
     const setCut = (percent) => {

@@ -51,13 +51,17 @@ struct Attributes {
 struct Builder {
     root: json::Root,
     bin: Vec<u8>,
-    /// Accessors per distinct primitive (`None`: no triangles).
-    attributes: HashMap<ShapeKey, Option<Attributes>>,
+    /// Accessors per distinct primitive and texture repeat size (the bits of its two
+    /// numbers: a primitive drawn with textures of different real sizes needs different
+    /// texture coordinates); `None`: no triangles.
+    attributes: HashMap<(ShapeKey, [u64; 2]), Option<Attributes>>,
     /// Meshes per distinct primitive and material slot.
     meshes: HashMap<(ShapeKey, u32), Option<json::Index<json::Mesh>>>,
-    /// Texture coordinates on every mesh: real-world size of one texture repeat, when some
-    /// material is textured.
-    uv_scale: Option<f64>,
+    /// Texture coordinates on every mesh, when some material is textured.
+    textured: bool,
+    /// While adding a mesh: the real-world size [u, v] of one repeat of its material's texture
+    /// (box projection), in model units.
+    uv_size: [f64; 2],
     /// Embedded textures by name.
     textures: HashMap<String, json::Index<json::Texture>>,
     /// While adding a mesh under a photo: node frame → photo frame, and the photo box's size.
@@ -80,7 +84,7 @@ pub(super) fn write_glb(
                 .as_ref()
                 .is_some_and(|t| textures.contains_key(t))
     });
-    b.uv_scale = textured.then_some(options.texture_scale);
+    b.textured = textured;
     b.root.asset = json::Asset {
         generator: Some(concat!("castellan vsg ", env!("CARGO_PKG_VERSION")).into()),
         version: "2.0".into(),
@@ -96,7 +100,7 @@ pub(super) fn write_glb(
         if let (NodeState::Terminal, Some(p)) = (node.state, &solid) {
             let appearance = &model.appearances[node.appearance as usize];
             let frame = appearance.texture_frame.filter(|_| {
-                b.uv_scale.is_some()
+                b.textured
                     && appearance
                         .texture
                         .as_ref()
@@ -107,6 +111,13 @@ pub(super) fn write_glb(
                 None => ShapeKey::of(p),
             };
             b.uv_frame = frame.map(|f| (f.world.inverse() * node.world, f.size));
+            b.uv_size = appearance
+                .texture
+                .as_ref()
+                .and_then(|t| textures.get(t))
+                .map_or([options.texture_scale; 2], |t| {
+                    t.repeat_size(options.texture_scale)
+                });
             let slot = palette.slot(node.appearance);
             if slot as usize == b.root.materials.len() {
                 let index = palette.used[slot as usize];
@@ -268,7 +279,9 @@ impl Builder {
     }
 
     /// Embeds texture `name` (once) as an image in the binary chunk, drawn with the one
-    /// repeating, linearly filtered sampler.
+    /// repeating, trilinearly filtered sampler: walls seen at a grazing angle or from far
+    /// away cover many texels per pixel, and without mipmaps (`LINEAR` minification) a
+    /// viewer samples them sparsely, which shows as moiré and static.
     fn add_texture(&mut self, name: &str, image: &TextureImage) -> json::Index<json::Texture> {
         if let Some(&t) = self.textures.get(name) {
             return t;
@@ -276,7 +289,7 @@ impl Builder {
         let sampler = match self.root.samplers.len() {
             0 => self.root.push(json::texture::Sampler {
                 mag_filter: Some(Valid(json::texture::MagFilter::Linear)),
-                min_filter: Some(Valid(json::texture::MinFilter::Linear)),
+                min_filter: Some(Valid(json::texture::MinFilter::LinearMipmapLinear)),
                 name: None,
                 wrap_s: Valid(json::texture::WrappingMode::Repeat),
                 wrap_t: Valid(json::texture::WrappingMode::Repeat),
@@ -316,7 +329,7 @@ impl Builder {
             return None;
         }
         let start = self.align();
-        let stride = if self.uv_scale.is_some() { 32 } else { 24 };
+        let stride = if self.textured { 32 } else { 24 };
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
         self.bin
@@ -333,14 +346,14 @@ impl Builder {
             for c in p.into_iter().chain(n.map(|c| c / len)) {
                 self.bin.extend_from_slice(&c.to_le_bytes());
             }
-            if let Some(scale) = self.uv_scale {
+            if self.textured {
                 let uv = match &self.uv_frame {
                     Some((to_frame, size)) => {
                         let p = to_frame * nalgebra::Point3::from(local);
                         let n = to_frame.rotation * nalgebra::Vector3::from(normal);
                         photo_uv([p.x, p.y, p.z], [n.x, n.y, n.z], *size)
                     }
-                    None => box_uv(local, normal, scale),
+                    None => box_uv(local, normal, self.uv_size),
                 };
                 for c in uv {
                     self.bin.extend_from_slice(&(c as f32).to_le_bytes());
@@ -360,8 +373,8 @@ impl Builder {
         );
         let normal = self.accessor(vertices, 12, count, ComponentType::F32, Type::Vec3, None);
         let uv = self
-            .uv_scale
-            .map(|_| self.accessor(vertices, 24, count, ComponentType::F32, Type::Vec2, None));
+            .textured
+            .then(|| self.accessor(vertices, 24, count, ComponentType::F32, Type::Vec2, None));
 
         let start = self.align();
         // u16 indices must stay below 65535 (the primitive-restart value).
@@ -405,12 +418,18 @@ impl Builder {
         material: u32,
         shade: impl FnOnce() -> Result<ShadedMesh, ExportError>,
     ) -> Result<Option<json::Index<json::Mesh>>, ExportError> {
-        let attributes = match self.attributes.get(&key) {
+        // Without texture coordinates the repeat size changes nothing: one set of accessors.
+        let size = if self.textured {
+            self.uv_size.map(f64::to_bits)
+        } else {
+            [0; 2]
+        };
+        let attributes = match self.attributes.get(&(key, size)) {
             Some(&a) => a,
             None => {
                 let view_name = format!("{name}_{}", self.attributes.len());
                 let a = self.add_attributes(&view_name, &shade()?);
-                self.attributes.insert(key, a);
+                self.attributes.insert((key, size), a);
                 a
             }
         };
@@ -503,9 +522,9 @@ pub(super) fn photo_uv(p: [f64; 3], n: [f64; 3], size: [f64; 3]) -> [f64; 2] {
 
 /// Texture coordinates of a vertex at local position `p` with normal `n` by box projection at
 /// real scale: `p` projected onto the plane perpendicular to `n`'s dominant axis, seen from
-/// outside (so textures are not mirrored, up is +Y on walls), divided by `scale` (model units
-/// per texture repeat); v grows downwards as glTF expects.
-pub(super) fn box_uv(p: [f64; 3], n: [f64; 3], scale: f64) -> [f64; 2] {
+/// outside (so textures are not mirrored, up is +Y on walls), divided by `size` (model units
+/// per texture repeat across and up the texture); v grows downwards as glTF expects.
+pub(super) fn box_uv(p: [f64; 3], n: [f64; 3], size: [f64; 2]) -> [f64; 2] {
     let [x, y, z] = p;
     let a = n.map(f64::abs);
     let sign = |c: f64| if c < 0.0 { -1.0 } else { 1.0 };
@@ -516,6 +535,6 @@ pub(super) fn box_uv(p: [f64; 3], n: [f64; 3], scale: f64) -> [f64; 2] {
     } else {
         (x * sign(n[2]), y)
     };
-    let scale = if scale.is_normal() { scale.abs() } else { 1.0 };
-    [u / scale, -v / scale]
+    let [su, sv] = size.map(|s| if s.is_normal() { s.abs() } else { 1.0 });
+    [u / su, -v / sv]
 }

@@ -29,8 +29,8 @@ pub fn to_glb(model: &Model, options: &ExportOptions) -> Result<Vec<u8>, ExportE
 /// Like [`to_glb`], and embeds the image of every texture a visible terminal uses that
 /// `textures` holds: materials get a `baseColorTexture` (tinted by their colour) and, when
 /// any material is textured, all meshes get `TEXCOORD_0` by box projection at real scale
-/// ([`ExportOptions::texture_scale`]). Textures missing from `textures` stay names in the
-/// material `extras` only.
+/// (each texture's [`TextureImage::size`], else [`ExportOptions::texture_scale`]), sampled
+/// with mipmaps. Textures missing from `textures` stay names in the material `extras` only.
 pub fn to_glb_with_textures(
     model: &Model,
     options: &ExportOptions,

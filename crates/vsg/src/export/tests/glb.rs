@@ -306,6 +306,7 @@ fn textures_are_embedded_with_real_scale_uvs() {
         TextureImage {
             bytes: png.clone(),
             mime_type: "image/png".into(),
+            size: None,
         },
     );
     let options = ExportOptions {
@@ -323,6 +324,9 @@ fn textures_are_embedded_with_real_scale_uvs() {
     assert_eq!(json["samplers"].as_array().unwrap().len(), 1);
     assert_eq!(json["samplers"][0]["wrapS"], 10497);
     assert_eq!(json["samplers"][0]["wrapT"], 10497);
+    // Trilinear: mipmapped minification (LINEAR_MIPMAP_LINEAR), linear magnification.
+    assert_eq!(json["samplers"][0]["minFilter"], 9987);
+    assert_eq!(json["samplers"][0]["magFilter"], 9729);
     let image = &json["images"][0];
     assert_eq!(image["mimeType"], "image/png");
     let view = &json["bufferViews"][image["bufferView"].as_u64().unwrap() as usize];
@@ -356,7 +360,7 @@ fn textures_are_embedded_with_real_scale_uvs() {
     assert_eq!(uvs.len(), positions.len());
     for ((uv, p), n) in uvs.iter().zip(&positions).zip(&normals) {
         let p = [p[0], p[1], p[2]];
-        let expected = super::gltf::box_uv(p, [n[0], n[1], n[2]], 2.0);
+        let expected = super::gltf::box_uv(p, [n[0], n[1], n[2]], [2.0; 2]);
         assert!((uv[0] - expected[0]).abs() < 1e-6 && (uv[1] - expected[1]).abs() < 1e-6);
         // Real scale: along a face, the UV distance is the model distance over the scale.
         if n[2].abs() > 0.9 {
@@ -380,12 +384,32 @@ fn textures_are_embedded_with_real_scale_uvs() {
 #[test]
 fn box_uv_projects_on_the_dominant_axis() {
     use super::gltf::box_uv;
-    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], 1.0), [1.0, -2.0]);
-    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, -1.0], 2.0), [-0.5, -1.0]);
-    assert_eq!(box_uv([1.0, 2.0, 3.0], [1.0, 0.0, 0.0], 1.0), [-3.0, -2.0]);
-    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 1.0, 0.0], 1.0), [1.0, 3.0]);
-    // A degenerate scale falls back to 1.
-    assert_eq!(box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], 0.0), [1.0, -2.0]);
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [1.0; 2]),
+        [1.0, -2.0]
+    );
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [0.0, 0.0, -1.0], [2.0; 2]),
+        [-0.5, -1.0]
+    );
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [1.0, 0.0, 0.0], [1.0; 2]),
+        [-3.0, -2.0]
+    );
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [0.0, 1.0, 0.0], [1.0; 2]),
+        [1.0, 3.0]
+    );
+    // Across and up the texture at their own sizes.
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [4.0, 0.5]),
+        [0.25, -4.0]
+    );
+    // A degenerate size falls back to 1.
+    assert_eq!(
+        box_uv([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [0.0; 2]),
+        [1.0, -2.0]
+    );
 }
 
 #[test]
@@ -422,6 +446,7 @@ piece :: {j3d.terminal};"#;
         TextureImage {
             bytes: b"\x89PNG\r\n\x1a\nbytes".to_vec(),
             mime_type: "image/png".into(),
+            size: None,
         },
     );
     let glb = to_glb_with_textures(&model, &ExportOptions::default(), &textures).unwrap();
@@ -464,4 +489,71 @@ piece :: {j3d.terminal};"#;
             "{spans:?}"
         );
     }
+}
+
+#[test]
+fn each_texture_repeats_at_its_own_real_size() {
+    // Two walls of the same box, one textured with a sample 4 × 2 units large, the other with
+    // a texture of no known size (the global texture scale, 0.5): the same primitive gets two
+    // sets of texture coordinates.
+    let src = r#"Axiom :: I("box", {8, 4, 1}) T(0, 0, 3) I("box", {8, 4, 1}){a, b};
+a :: appearance("texture", "stone.png"){j3d.terminal};
+b :: appearance("texture", "plain.png"){j3d.terminal};"#;
+    let model = crate::run(src, &crate::RunOptions::default()).unwrap();
+    let image = |size| TextureImage {
+        bytes: b"\x89PNG\r\n\x1a\nbytes".to_vec(),
+        mime_type: "image/png".into(),
+        size,
+    };
+    let mut textures = Textures::new();
+    textures.insert("stone.png".into(), image(Some([4.0, 2.0])));
+    textures.insert("plain.png".into(), image(None));
+    let options = ExportOptions {
+        texture_scale: 0.5,
+        ..ExportOptions::default()
+    };
+    let glb = to_glb_with_textures(&model, &options, &textures).unwrap();
+    let (json, bin) = parse_glb(&glb);
+    let materials = json["materials"].as_array().unwrap();
+    let texture_of = |material: u64| {
+        let t = materials[material as usize]["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+            .as_u64()
+            .unwrap();
+        json["textures"][t as usize]["name"]
+            .as_str()
+            .unwrap()
+            .to_owned()
+    };
+    let mut seen = Vec::new();
+    for m in json["meshes"].as_array().unwrap() {
+        let p = &m["primitives"][0];
+        let size = match texture_of(p["material"].as_u64().unwrap()).as_str() {
+            "stone.png" => [4.0, 2.0],
+            _ => [0.5, 0.5],
+        };
+        let a = &p["attributes"];
+        let uvs = read_accessor(&json, bin, a["TEXCOORD_0"].as_u64().unwrap());
+        let positions = read_accessor(&json, bin, a["POSITION"].as_u64().unwrap());
+        let normals = read_accessor(&json, bin, a["NORMAL"].as_u64().unwrap());
+        for ((uv, q), n) in uvs.iter().zip(&positions).zip(&normals) {
+            let e = super::gltf::box_uv([q[0], q[1], q[2]], [n[0], n[1], n[2]], size);
+            assert!((uv[0] - e[0]).abs() < 1e-6 && (uv[1] - e[1]).abs() < 1e-6);
+        }
+        // The 8-unit-wide front face spans two repeats of the sample, sixteen of the other.
+        let front: Vec<f64> = uvs
+            .iter()
+            .zip(&normals)
+            .filter(|(_, n)| n[2] > 0.9)
+            .map(|(uv, _)| uv[0])
+            .collect();
+        let span = front.iter().cloned().fold(f64::MIN, f64::max)
+            - front.iter().cloned().fold(f64::MAX, f64::min);
+        seen.push((size[0], span));
+    }
+    seen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(seen.len(), 2, "{seen:?}");
+    assert!(
+        (seen[0].1 - 16.0).abs() < 1e-5 && (seen[1].1 - 2.0).abs() < 1e-5,
+        "{seen:?}"
+    );
 }
