@@ -148,7 +148,7 @@ fn pct(e: f64, t: f64) -> f64 {
 fn circle(s: &Structure) -> Option<([f64; 2], f64)> {
     match s.footprint {
         Footprint::Circle { center, radius } => Some((center, radius)),
-        Footprint::Rectangle { .. } | Footprint::Wall { .. } => None,
+        Footprint::Rectangle { .. } | Footprint::Wall { .. } | Footprint::Blocks { .. } => None,
     }
 }
 

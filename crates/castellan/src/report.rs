@@ -159,6 +159,14 @@ fn structures_table(h: &mut String, e: &Estimate) {
                     center[0], center[1], radius
                 )
             }
+            Footprint::Blocks { rotation, blocks } => {
+                let area: f64 = blocks.iter().map(|b| b.size[0] * b.size[1]).sum();
+                format!(
+                    "{} blocks, {area:.1} in area, {:.1}°",
+                    blocks.len(),
+                    rotation.to_degrees()
+                )
+            }
             Footprint::Wall {
                 thickness, closed, ..
             } => {

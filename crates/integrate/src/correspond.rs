@@ -33,6 +33,7 @@ pub(crate) fn area(f: &Footprint) -> f64 {
         Footprint::Wall { thickness, .. } => {
             thickness * f.pieces().iter().map(|[a, b]| length(*a, *b)).sum::<f64>()
         }
+        Footprint::Blocks { blocks, .. } => blocks.iter().map(|b| b.size[0] * b.size[1]).sum(),
     }
 }
 
@@ -77,6 +78,10 @@ pub fn contains(f: &Footprint, p: [f64; 2]) -> bool {
         Footprint::Wall { thickness, .. } => {
             nearest_piece(f, p).is_some_and(|(_, d)| d <= thickness / 2.0)
         }
+        Footprint::Blocks { rotation, blocks } => blocks.iter().any(|b| {
+            let (u, v) = local(b.center, *rotation, p);
+            u.abs() <= b.size[0] / 2.0 && v.abs() <= b.size[1] / 2.0
+        }),
     }
 }
 
@@ -144,6 +149,24 @@ pub fn place(footprint: &Footprint, points: &[[f64; 2]]) -> Placement {
                 start,
                 end,
                 diameter: 2.0 * radius,
+            }
+        }
+        // A façade on a room of blocks covers the room's length along its long axis.
+        Footprint::Blocks { rotation, blocks } => {
+            let along = |b: &crate::estimate::Block, sign: f64| {
+                local([0.0, 0.0], *rotation, b.center).0 + sign * b.size[0] / 2.0
+            };
+            let lo = blocks
+                .iter()
+                .map(|b| along(b, -1.0))
+                .fold(f64::MAX, f64::min);
+            let hi = blocks
+                .iter()
+                .map(|b| along(b, 1.0))
+                .fold(f64::MIN, f64::max);
+            Placement::Side {
+                side: Side::North,
+                length: (hi - lo).max(0.0),
             }
         }
         // A façade on a wall covers the straight piece it was pointed at; its outer face is

@@ -115,6 +115,13 @@ pub enum Footprint {
         center: [f64; 2],
         radius: f64,
     },
+    /// A room §5.1.5 could not fit as a circle or rectangle, covered by rectangles (`size`
+    /// across and along, in the frame turned by `rotation` as a rectangle's) cut from its open
+    /// pixels in strips across its long axis.
+    Blocks {
+        rotation: f64,
+        blocks: Vec<Block>,
+    },
     /// A wall `thickness` thick along a centreline (straight pieces, arcs as short chords);
     /// `closed` when it is a ring (the last point is then joined to the first).
     Wall {
@@ -122,6 +129,13 @@ pub enum Footprint {
         thickness: f64,
         closed: bool,
     },
+}
+
+/// One rectangle of a [`Footprint::Blocks`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Block {
+    pub center: [f64; 2],
+    pub size: [f64; 2],
 }
 
 /// The wall a façade is mapped to: a side of a rectangle (the local −z, +z, +x, −x faces of

@@ -211,6 +211,9 @@ pub struct PlanFace {
     pub shape: Option<Fit>,
     /// Indices of the bounding edges.
     pub edges: Vec<usize>,
+    /// Its open pixels as row runs `[y, x0, x1]` (x1 inclusive), top to bottom; empty for the
+    /// surroundings. The model builds a room §5.1.5 could not fit from them (issue 25).
+    pub runs: Vec<[u32; 3]>,
 }
 
 /// The parsed drawing.
@@ -370,6 +373,16 @@ fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         .faces
         .into_iter()
         .map(|f| PlanFace {
+            // The enlarged drawing's rows through each small pixel's centre.
+            runs: f
+                .runs
+                .iter()
+                .filter(|r| r[0] % k == k / 2)
+                .map(|r| [r[0] / k, r[1].div_ceil(k), (r[2] + 1) / k])
+                .filter(|r| r[2] >= r[1] && r[2] > 0)
+                .map(|r| [r[0], r[1], r[2] - 1])
+                .filter(|r| r[2] >= r[1])
+                .collect(),
             area: (f.area as f64 / (kf * kf)).round() as usize,
             centroid: [small(f.centroid[0]), small(f.centroid[1])],
             shape: f.shape.map(|s| s.scaled(inv)),
@@ -569,8 +582,26 @@ fn parse_grey(
             thickness: thickness[k],
         })
         .collect();
+    let mut runs: Vec<Vec<[u32; 3]>> = vec![Vec::new(); nf];
+    for (y, row) in face_of.chunks(wu).enumerate() {
+        let mut x = 0;
+        while x < wu {
+            let f = row[x];
+            let open = |x: usize| row[x] == f && walls.data[y * wu + x] == 0;
+            if f == u32::MAX || !open(x) || labelling.faces[f as usize] == Label::CastleSurroundings
+            {
+                x += 1;
+                continue;
+            }
+            let start = x;
+            while x < wu && open(x) {
+                x += 1;
+            }
+            runs[f as usize].push([y as u32, start as u32, x as u32 - 1]);
+        }
+    }
     let mut faces = Vec::with_capacity(nf);
-    for (f, info) in infos.iter().enumerate() {
+    for (f, (info, runs)) in infos.iter().zip(runs).enumerate() {
         let bounding: Vec<usize> = (0..edges.len())
             .filter(|&e| edge_faces[e].contains(&f))
             .collect();
@@ -591,6 +622,7 @@ fn parse_grey(
             centroid: [info.sum[0] / a, info.sum[1] / a],
             shape,
             edges: bounding,
+            runs,
         });
     }
     let mut warnings = labelling.warnings;

@@ -5,6 +5,7 @@
 //! shapes: round and square towers with roofs, solid round towers (the plan's bulge towers)
 //! with roofs, keeps, curtain walls with crenellations.
 
+mod blocks;
 mod common;
 mod facades;
 mod walls;
@@ -65,6 +66,12 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         );
         let h = s.height;
         match (&s.footprint, s.kind, s.facades.is_empty()) {
+            (Footprint::Blocks { .. }, _, _) => {
+                let text = blocks::room(s);
+                w.params.push_str(&text.params);
+                w.axiom.extend(text.axiom);
+                w.rules.push_str(&text.rules);
+            }
             (Footprint::Wall { .. }, _, _) => {
                 let list = (!o.wall_textures.is_empty()).then(|| string_list(&o.wall_textures));
                 let text = walls::run(s, list.as_deref());
@@ -229,6 +236,14 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         w.params.push_str(&text.params);
         w.rules.push_str(&text.rules);
     }
+    if e.structures
+        .iter()
+        .any(|s| matches!(s.footprint, Footprint::Blocks { .. }))
+    {
+        let text = blocks::shared(u);
+        w.params.push_str(&text.params);
+        w.rules.push_str(&text.rules);
+    }
     let Writer {
         imports,
         params,
@@ -269,7 +284,7 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
     };
     let _ = writeln!(
         out,
-        "\n// Shared terminals; walls without a photo pick a sample texture per shape (figure 7.6).\nmasonry :: {masonry}{{j3d.terminal}};\nfacadeWall :: {{j3d.terminal}};\nfacadeBack :: appearance(\"texture\", \"\"){{masonry}};\nfacadeGlass :: {{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};\nroof :: appearance(\"color\", {{0.55, 0.2, 0.15}}){{j3d.terminal}};"
+        "\n// Shared terminals; walls without a photo pick a sample texture per shape (figure 7.6).\nmasonry :: {masonry}{{j3d.terminal}};\nfacadeWall :: {{j3d.terminal}};\nfacadeBack :: appearance(\"texture\", \"\"){{masonry}};\nfacadeGlass :: {{j3d.terminal}};\nfloorSlab :: appearance(\"color\", {{0.45, 0.33, 0.22}}){{j3d.terminal}};\nroom :: void(){{j3d.terminal}};\nglass :: appearance(\"color\", {{0.16, 0.2, 0.26}}){{j3d.terminal}};\nopening :: void(){{j3d.terminal}};\nroof :: appearance(\"color\", {{0.55, 0.2, 0.15}}){{j3d.terminal}};\n// The library's stone colour, which tints a wall sample where the structure set one.\nwallStone :: appearance(\"color\", {{0.76, 0.72, 0.64}}){{j3d.terminal}};"
     );
     out
 }

@@ -5,6 +5,7 @@
 //! inner wall ([`walls`]). Each structure has a role ([`roles`]: keep, tower, range, room,
 //! curtain, wall). Heights are the class defaults of §5.3 until a façade says otherwise.
 
+mod blocks;
 mod roles;
 mod walls;
 
@@ -17,7 +18,7 @@ use plan::label::Label;
 use plan::scale::{ModelScale, outer_wall_thickness};
 
 use crate::correspond::{area, contains};
-use crate::estimate::{Element, Footprint, Kind, Provenance, Role, Structure};
+use crate::estimate::{Block, Element, Footprint, Kind, Provenance, Role, Structure};
 use roles::{Candidate, SQUAREISH};
 
 /// The base of a structure's id: its role, or for a room its label's building.
@@ -176,7 +177,24 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                     },
                     *error,
                 ),
-                _ => return None,
+                _ => {
+                    // Issue 25: every room is built; one no circle or rectangle fits is
+                    // covered by blocks cut from its open pixels, inside its walls.
+                    let (rotation, blocks) = blocks::cover(&face.runs, t_px)?;
+                    let blocks = blocks
+                        .into_iter()
+                        .map(|b| Block {
+                            center: [b.center[0] * s, b.center[1] * s],
+                            size: [b.size[0] * s, b.size[1] * s],
+                        })
+                        .collect();
+                    (
+                        Footprint::Blocks { rotation, blocks },
+                        Kind::HollowRectangular,
+                        "blocks",
+                        0.0,
+                    )
+                }
             };
             Some(Room {
                 face: fi,
@@ -213,7 +231,9 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                 Footprint::Rectangle { size, .. } => {
                     size[0].max(size[1]) <= SQUAREISH * size[0].min(size[1])
                 }
-                _ => true,
+                Footprint::Circle { .. } => true,
+                // A shape no circle or rectangle fits is no keep.
+                Footprint::Blocks { .. } | Footprint::Wall { .. } => false,
             },
             on_curtain: r.on_curtain,
         })
@@ -257,7 +277,10 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
     for (i, room) in rooms.iter().enumerate() {
         let face = &plan.faces[room.face];
         let role = role_of_room(i);
-        for &e in &face.edges {
+        // A fitted footprint takes in half its walls; blocks cover the inside, and the walls
+        // are built as walls.
+        let covers_walls = !matches!(room.footprint, Footprint::Blocks { .. });
+        for &e in face.edges.iter().filter(|_| covers_walls) {
             owned[e] = true;
             if matches!(role, Role::Tower | Role::Keep) {
                 tower_owned[e] = true;
@@ -274,13 +297,21 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             "footprint".to_string(),
             Provenance::new(
                 image,
-                format!(
-                    "§5.1.5 {} fit of plan face {} ({}), plus half the wall",
-                    room.fit,
-                    room.face,
-                    face.label.name()
-                ),
-                Some(room.error),
+                if covers_walls {
+                    format!(
+                        "§5.1.5 {} fit of plan face {} ({}), plus half the wall",
+                        room.fit,
+                        room.face,
+                        face.label.name()
+                    )
+                } else {
+                    format!(
+                        "issue 25: the open pixels of plan face {} ({}), which no circle or rectangle fits, cut into blocks along its long axis",
+                        room.face,
+                        face.label.name()
+                    )
+                },
+                (covers_walls).then_some(room.error),
             ),
         );
         provenance.insert(
@@ -327,8 +358,16 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             );
             heights.of(wall_label)
         };
+        let children = if covers_walls {
+            hierarchy(&id, room.kind)
+        } else {
+            vec![
+                Element::leaf(format!("{id}Mass"), "mass"),
+                Element::leaf(format!("{id}Roof"), "roof"),
+            ]
+        };
         out.push(Structure {
-            children: hierarchy(&id, room.kind),
+            children,
             id,
             label: face.label,
             role,
