@@ -41,23 +41,11 @@ fn length(a: [f64; 2], b: [f64; 2]) -> f64 {
     (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
-/// Distance from `p` to the segment `a`–`b`.
-pub(crate) fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
-}
-
 /// The piece of a wall's centreline nearest to `p`.
 fn nearest_piece(f: &Footprint, p: [f64; 2]) -> Option<([[f64; 2]; 2], f64)> {
     f.pieces()
         .into_iter()
-        .map(|s| (s, segment_distance(p, s[0], s[1])))
+        .map(|s| (s, plan::fit::segment_distance(p, s[0], s[1])))
         .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 

@@ -119,7 +119,7 @@ pub fn paint(img: &mut GrayImage, strokes: &[Stroke]) -> usize {
             for y in y0..y1 {
                 for x in x0..x1 {
                     let p = [f64::from(x) + 0.5, f64::from(y) + 0.5];
-                    if distance_to_segment(p, seg) <= s.radius {
+                    if crate::fit::segment_distance(p, seg[0], seg[1]) <= s.radius {
                         let px = img.get_pixel_mut(x, y);
                         changed += usize::from(px[0] != value);
                         px[0] = value;
@@ -129,17 +129,6 @@ pub fn paint(img: &mut GrayImage, strokes: &[Stroke]) -> usize {
         }
     }
     changed
-}
-
-fn distance_to_segment(p: [f64; 2], [a, b]: [[f64; 2]; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 #[cfg(test)]

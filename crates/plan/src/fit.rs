@@ -114,6 +114,19 @@ fn mean(pts: &[[f64; 2]]) -> [f64; 2] {
     [sx / n, sy / n]
 }
 
+/// Distance from `p` to the segment `a`–`b` (to `a` when the segment is a point): the one
+/// rule for how near a point is to a drawn stroke or a wall's piece.
+pub fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
 /// Total-least-squares line (the algebraic line fit): normal = least eigenvector of the
 /// scatter matrix. Error by eq. 5.2.
 pub fn fit_line(pts: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
