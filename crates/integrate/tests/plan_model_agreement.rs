@@ -55,14 +55,15 @@ fn show(a: &Agreement) -> String {
 fn coucy_model_covers_its_plan_at_least_as_well_as_today() {
     let r = reconstruct("coucy");
     let a = &r.agreement;
-    // Measured (issue 25): IoU 0.721, precision 0.953, recall 0.747, rooms 11 / 21, towers
-    // 4 / 6. The floors leave 0.02 for floating-point drift between builds; what is missing
-    // is rooms without a circle or rectangle fit (no structure), the chapel among them, and
-    // two tower rooms only walls cross (`--example plan_model_agreement -- --absent`).
-    assert!(a.iou >= 0.70, "{}", show(a));
-    assert!(a.recall >= 0.72, "{}", show(a));
-    assert!(a.towers_present() >= 4, "{}", show(a));
-    assert!(a.rooms_present() >= 11, "{}", show(a));
+    // Measured (issue 25): IoU 0.802, precision 0.911, recall 0.870, every room (21) and tower
+    // (6) built; before the structures of issue 25, 0.721, 0.953, 0.747, 11 / 21 and 4 / 6.
+    // The floors leave 0.02 for floating-point drift between builds; what is missing is the
+    // hachured band round the donjon's moat and the outworks' ends
+    // (overlays/plan_model.png).
+    assert!(a.iou >= 0.78, "{}", show(a));
+    assert!(a.recall >= 0.85, "{}", show(a));
+    assert_eq!(a.towers_present(), a.towers.len(), "{}", show(a));
+    assert_eq!(a.rooms_present(), a.rooms.len(), "{}", show(a));
     // stats.json carries the same figures.
     assert_eq!(r.exports.stats["agreement"], a.summary());
     // Every covered pixel of a room belongs to a structure of the estimate.
@@ -76,7 +77,8 @@ fn coucy_model_covers_its_plan_at_least_as_well_as_today() {
 fn the_synthetic_castle_is_built_where_it_is_drawn() {
     let r = reconstruct("demo");
     let a = &r.agreement;
-    // Measured: IoU 0.958, precision 0.962, recall 0.995, rooms 3 / 3, towers 2 / 2.
+    // Measured: IoU 0.956, precision 0.962, recall 0.994, rooms 3 / 3, towers 2 / 2 (0.958
+    // before issue 25's structures).
     assert!(a.iou >= 0.94, "{}", show(a));
     assert_eq!(a.rooms_present(), a.rooms.len(), "{}", show(a));
     assert_eq!(a.towers_present(), a.towers.len(), "{}", show(a));

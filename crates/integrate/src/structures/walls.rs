@@ -148,10 +148,41 @@ pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> V
                 continue;
             }
             let role = if lone_room { Role::Wall } else { role };
-            out.push(run(plan, role, edges, closed));
+            let parts = by_thickness(plan, edges);
+            let closed = closed && parts.len() == 1;
+            for part in parts {
+                out.push(run(plan, role, part, closed));
+            }
         }
     }
     out
+}
+
+/// A run changes thickness where two neighbouring edges differ by more than this factor
+/// (a thick stretch of wall between thin ones is drawn, and built, thick). Over the 34 shared
+/// plans: no cut, median IoU 0.732; 1.6, 0.753; 1.3, 0.762 with 5 % more structures.
+const THICKNESS_STEP: f64 = 1.6;
+
+/// A chain of edges cut where the wall's drawn thickness steps.
+fn by_thickness(plan: &ParsedPlan, edges: Vec<usize>) -> Vec<Vec<usize>> {
+    let mut parts: Vec<Vec<usize>> = Vec::new();
+    for e in edges {
+        let t = plan.edges[e].thickness.max(1.0);
+        match parts.last_mut() {
+            Some(part)
+                if {
+                    let prev = plan.edges[*part.last().expect("parts are never empty")]
+                        .thickness
+                        .max(1.0);
+                    t.max(prev) <= THICKNESS_STEP * t.min(prev)
+                } =>
+            {
+                part.push(e)
+            }
+            _ => parts.push(vec![e]),
+        }
+    }
+    parts
 }
 
 /// The member edges joined through the vertices where exactly two of them meet: open chains
