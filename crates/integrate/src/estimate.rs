@@ -75,6 +75,8 @@ pub enum Role {
     Keep,
     /// A tower of the curtain (a tower room, or a bulge of the outline drawn solid).
     Tower,
+    /// A gate block between two towers that flank the way in, with its passage.
+    Gatehouse,
     /// The curtain wall: a run of the castle's outer wall between towers, with its wall walk
     /// and a parapet crenellated on the field side.
     Curtain,
@@ -92,6 +94,7 @@ impl Role {
         match self {
             Role::Keep => "keep",
             Role::Tower => "tower",
+            Role::Gatehouse => "gatehouse",
             Role::Curtain => "curtain",
             Role::Range => "range",
             Role::Room => "room",

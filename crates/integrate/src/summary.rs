@@ -68,6 +68,7 @@ impl RoleSummary {
             (r, 1) => r.name(),
             (Role::Keep, _) => "keeps",
             (Role::Tower, _) => "towers",
+            (Role::Gatehouse, _) => "gatehouses",
             (Role::Range, _) => "ranges",
             (Role::Room, _) => "rooms",
         };

@@ -172,3 +172,52 @@ fn every_parapet_stands_on_the_field_side_of_its_curtain() {
         "{parapets} parapets, {walks} walks"
     );
 }
+
+#[test]
+fn two_towers_flanking_the_way_in_become_a_gatehouse_with_its_passage() {
+    // The north curtain's two towers 100 px (10 m) apart, centreline radius 30 px.
+    let castle = Castle {
+        towers: vec![([270.0, 100.0], 30.0), ([370.0, 100.0], 30.0)],
+        ..Castle::default()
+    };
+    let e = estimate(&castle);
+    let gates: Vec<_> = e
+        .structures
+        .iter()
+        .filter(|s| s.role == Role::Gatehouse)
+        .collect();
+    assert_eq!(
+        gates.len(),
+        1,
+        "{:?}",
+        e.structures.iter().map(|s| &s.id).collect::<Vec<_>>()
+    );
+    let Footprint::Rectangle { center, size, .. } = gates[0].footprint else {
+        panic!("{:?}", gates[0])
+    };
+    // From one tower's centre to the other's.
+    assert!(
+        (center[0] - 32.0).abs() < 0.3 && (center[1] - 10.0).abs() < 0.3,
+        "{center:?}"
+    );
+    assert!((size[0] - 10.0).abs() < 0.3, "{size:?}");
+    // The default castle's corner towers are far apart: no gatehouse.
+    let plain = estimate(&Castle::default());
+    assert!(plain.structures.iter().all(|s| s.role != Role::Gatehouse));
+    // In the model, the passage is open at the ground.
+    let src = program::generate(&e, &program::Options::default());
+    let model = vsg::run_with(
+        "model.vsg",
+        &src,
+        &vsg::RunOptions::default(),
+        &mut integrate::library::Library::default(),
+    )
+    .unwrap_or_else(|err| panic!("{}\n{src}", err.render("model.vsg", &src)));
+    let passage = model
+        .nodes
+        .iter()
+        .position(|n| model.symbol(n) == "gatehouse1Passage")
+        .expect("the passage");
+    let first = &model.nodes[model.nodes[passage].first_child as usize];
+    assert_eq!(model.symbol(first), "opening");
+}

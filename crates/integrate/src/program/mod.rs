@@ -8,6 +8,7 @@
 mod blocks;
 mod common;
 mod facades;
+mod gate;
 mod walls;
 
 use std::f64::consts::TAU;
@@ -66,6 +67,12 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         );
         let h = s.height;
         match (&s.footprint, s.kind, s.facades.is_empty()) {
+            (Footprint::Rectangle { .. }, _, _) if s.role == Role::Gatehouse => {
+                let text = gate::block(s, u);
+                w.params.push_str(&text.params);
+                w.axiom.extend(text.axiom);
+                w.rules.push_str(&text.rules);
+            }
             (Footprint::Blocks { .. }, _, _) => {
                 let text = blocks::room(s);
                 w.params.push_str(&text.params);
@@ -233,6 +240,11 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         .min_by(f64::total_cmp);
     if let Some(lowest) = lowest_wall {
         let text = walls::shared(lowest, u);
+        w.params.push_str(&text.params);
+        w.rules.push_str(&text.rules);
+    }
+    if e.structures.iter().any(|s| s.role == Role::Gatehouse) {
+        let text = gate::shared(u);
         w.params.push_str(&text.params);
         w.rules.push_str(&text.rules);
     }

@@ -86,6 +86,86 @@ struct Room {
     on_curtain: bool,
 }
 
+/// A gate block's default height over the curtain's class height (the text's classes have no
+/// gatehouse; it stands above the curtain it pierces).
+const GATE_OVER_CURTAIN: f64 = 1.25;
+
+/// A gatehouse between every two towers close enough to flank a gate (`roles::gates`): a block
+/// from one tower's centre to the other's, as deep as the smaller tower is wide, pierced by its
+/// passage in the program.
+fn gatehouses(
+    built: &[Structure],
+    heights: &Heights,
+    image: &str,
+    next_id: &mut impl FnMut(&'static str) -> String,
+) -> Vec<Structure> {
+    let towers: Vec<(&Structure, [f64; 2], f64)> = built
+        .iter()
+        .filter(|s| s.role == Role::Tower)
+        .filter_map(|s| match &s.footprint {
+            Footprint::Circle { center, radius } => Some((s, *center, *radius)),
+            Footprint::Rectangle { center, size, .. } => {
+                Some((s, *center, size[0].min(size[1]) / 2.0))
+            }
+            _ => None,
+        })
+        .collect();
+    let circles: Vec<([f64; 2], f64)> = towers.iter().map(|t| (t.1, t.2)).collect();
+    roles::gates(&circles)
+        .into_iter()
+        .map(|[i, j]| {
+            let ((a, ca, ra), (b, cb, rb)) = (towers[i], towers[j]);
+            let (dx, dy) = (cb[0] - ca[0], cb[1] - ca[1]);
+            let length = dx.hypot(dy);
+            let id = next_id(Role::Gatehouse.name());
+            let mut provenance = BTreeMap::new();
+            provenance.insert(
+                "footprint".to_string(),
+                Provenance::new(
+                    image,
+                    format!(
+                        "issue 25: {} and {} flank a gate ({:.2} apart, within 0.75 of their summed radii): a block from centre to centre, as deep as the smaller is wide",
+                        a.id,
+                        b.id,
+                        length - ra - rb,
+                    ),
+                    None,
+                ),
+            );
+            provenance.insert(
+                "height".to_string(),
+                Provenance::new(
+                    "default",
+                    format!(
+                        "the gatehouse: {GATE_OVER_CURTAIN} × the §5.3 class height of {}",
+                        Label::CastleOuterWall.name()
+                    ),
+                    None,
+                ),
+            );
+            Structure {
+                children: vec![
+                    Element::leaf(format!("{id}Body"), "wall"),
+                    Element::leaf(format!("{id}Passage"), "passage"),
+                ],
+                id,
+                label: Label::CastleOuterWall,
+                role: Role::Gatehouse,
+                kind: Kind::Solid,
+                footprint: Footprint::Rectangle {
+                    center: [(ca[0] + cb[0]) / 2.0, (ca[1] + cb[1]) / 2.0],
+                    size: [length, 2.0 * ra.min(rb)],
+                    rotation: dy.atan2(dx),
+                },
+                height: GATE_OVER_CURTAIN * heights.of(Label::CastleOuterWall),
+                wall_thickness: a.wall_thickness.max(b.wall_thickness),
+                facades: Vec::new(),
+                provenance,
+            }
+        })
+        .collect()
+}
+
 /// A room whose boundary §5.1.5 would not fit (a D-shaped tower, a chapel with its apse, a
 /// room whose walls the drawing breaks): the circle or rectangle of its boundary within
 /// `LOOSE_FIT` of its size, when the room's open area fills at least `LOOSE_FILL` of it —
@@ -437,6 +517,9 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             facades: Vec::new(),
             provenance,
         });
+    }
+    for gate in gatehouses(&out, &heights, image, &mut next_id) {
+        out.push(gate);
     }
     let runs = walls::runs(plan, &owned, &tower_owned);
     for run in runs.into_iter().chain(walls::spur_runs(plan)) {
