@@ -288,14 +288,9 @@ fn is_built(label: u8) -> bool {
 }
 
 fn is_room(label: u8) -> bool {
-    [
-        Label::TowerRoom,
-        Label::GreatHall,
-        Label::Chapel,
-        Label::UnknownRoom,
-    ]
-    .iter()
-    .any(|&l| l as u8 == label)
+    Label::ALL
+        .get(usize::from(label))
+        .is_some_and(|l| l.is_room())
 }
 
 /// A share that is 1 when there is nothing to share: an empty model builds nothing wrongly,

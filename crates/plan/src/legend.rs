@@ -68,6 +68,14 @@ impl Label {
         }
     }
 
+    /// An open space a building encloses: a tower room, great hall, chapel or unknown room.
+    pub fn is_room(self) -> bool {
+        matches!(
+            self,
+            Label::TowerRoom | Label::GreatHall | Label::Chapel | Label::UnknownRoom
+        )
+    }
+
     pub fn is_wall(self) -> bool {
         matches!(
             self,

@@ -8,12 +8,11 @@ use std::fmt::Write;
 
 use crate::estimate::{Footprint, Structure};
 
-use super::common::n;
-use super::walls::WallText;
+use super::common::{Part, n};
 
 /// A room of blocks: one box per block, at the structure's height.
-pub(super) fn room(s: &Structure) -> WallText {
-    let mut out = WallText::default();
+pub(super) fn room(s: &Structure) -> Part {
+    let mut out = Part::default();
     let Footprint::Blocks { rotation, blocks } = &s.footprint else {
         return out;
     };
@@ -41,8 +40,8 @@ pub(super) fn room(s: &Structure) -> WallText {
 }
 
 /// The rule every block shares; `u` the units per metre.
-pub(super) fn shared(u: f64) -> WallText {
-    WallText {
+pub(super) fn shared(u: f64) -> Part {
+    Part {
         params: format!(
             "\n// Rooms of blocks: the flat roof's thickness.\nfloat roomRoofT = {};\n",
             n(0.4 * u)

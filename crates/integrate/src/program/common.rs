@@ -49,3 +49,13 @@ pub(super) fn storeys(s: &Structure, o: &Options, u: f64) -> u32 {
         .unwrap_or_else(|| (s.height / (o.storey_metres * u)).round() as u32)
         .clamp(1, 30)
 }
+
+/// What a structure written inline (not imported from the library) adds to the program: its
+/// parameters, its mass models in the axiom (instantiation, successor), and its rules — or
+/// what a kind of them shares once.
+#[derive(Default)]
+pub(super) struct Part {
+    pub params: String,
+    pub axiom: Vec<(String, String)>,
+    pub rules: String,
+}

@@ -6,13 +6,12 @@ use std::fmt::Write;
 
 use crate::estimate::{Footprint, Structure};
 
-use super::common::n;
-use super::walls::WallText;
+use super::common::{Part, n};
 
 /// One gatehouse: its block in the axiom and its rules (the passage's width and height are
 /// its own); `u` the units per metre.
-pub(super) fn block(s: &Structure, u: f64) -> WallText {
-    let mut out = WallText::default();
+pub(super) fn block(s: &Structure, u: f64) -> Part {
+    let mut out = Part::default();
     let Footprint::Rectangle {
         center,
         size,
@@ -50,8 +49,8 @@ pub(super) fn block(s: &Structure, u: f64) -> WallText {
 }
 
 /// The crenellated top every gatehouse shares; `u` the units per metre.
-pub(super) fn shared(u: f64) -> WallText {
-    WallText {
+pub(super) fn shared(u: f64) -> Part {
+    Part {
         params: format!(
             "\n// Gatehouses' merlons.\nfloat gateMerlon = {};\n",
             n(1.0 * u)

@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 use std::fmt::Write;
 
 use crate::estimate::{Estimate, Footprint, Kind, Role, Structure};
-use common::{n, storeys, string_list};
+use common::{Part, n, storeys, string_list};
 use facades::hollow_box_with_facades;
 
 pub use common::Options;
@@ -68,23 +68,14 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         let h = s.height;
         match (&s.footprint, s.kind, s.facades.is_empty()) {
             (Footprint::Rectangle { .. }, _, _) if s.role == Role::Gatehouse => {
-                let text = gate::block(s, u);
-                w.params.push_str(&text.params);
-                w.axiom.extend(text.axiom);
-                w.rules.push_str(&text.rules);
+                w.add(gate::block(s, u));
             }
             (Footprint::Blocks { .. }, _, _) => {
-                let text = blocks::room(s);
-                w.params.push_str(&text.params);
-                w.axiom.extend(text.axiom);
-                w.rules.push_str(&text.rules);
+                w.add(blocks::room(s));
             }
             (Footprint::Wall { .. }, _, _) => {
                 let list = (!o.wall_textures.is_empty()).then(|| string_list(&o.wall_textures));
-                let text = walls::run(s, list.as_deref());
-                w.params.push_str(&text.params);
-                w.axiom.extend(text.axiom);
-                w.rules.push_str(&text.rules);
+                w.add(walls::run(s, list.as_deref()));
             }
             // A tower drawn solid (a bulge of the curtain): no storeys or slits to take from a
             // façade, only its height.
@@ -239,22 +230,16 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
         .map(|s| s.height)
         .min_by(f64::total_cmp);
     if let Some(lowest) = lowest_wall {
-        let text = walls::shared(lowest, u);
-        w.params.push_str(&text.params);
-        w.rules.push_str(&text.rules);
+        w.add(walls::shared(lowest, u));
     }
     if e.structures.iter().any(|s| s.role == Role::Gatehouse) {
-        let text = gate::shared(u);
-        w.params.push_str(&text.params);
-        w.rules.push_str(&text.rules);
+        w.add(gate::shared(u));
     }
     if e.structures
         .iter()
         .any(|s| matches!(s.footprint, Footprint::Blocks { .. }))
     {
-        let text = blocks::shared(u);
-        w.params.push_str(&text.params);
-        w.rules.push_str(&text.rules);
+        w.add(blocks::shared(u));
     }
     let Writer {
         imports,
@@ -312,6 +297,13 @@ struct Writer {
 }
 
 impl Writer {
+    /// A structure written inline, or what a kind of them shares.
+    fn add(&mut self, part: Part) {
+        self.params.push_str(&part.params);
+        self.axiom.extend(part.axiom);
+        self.rules.push_str(&part.rules);
+    }
+
     /// A structure from the medieval library (§7.2.2): its parameters, an `import … as id`,
     /// a site in the axiom at the footprint's centre (turned by `rotation`) and its rule.
     fn library(

@@ -8,23 +8,15 @@ use std::fmt::Write;
 
 use crate::estimate::{Footprint, Role, Structure};
 
-use super::common::n;
-
-/// What a wall run adds to the program's parameters, axiom and rules.
-#[derive(Default)]
-pub(super) struct WallText {
-    pub params: String,
-    pub axiom: Vec<(String, String)>,
-    pub rules: String,
-}
+use super::common::{Part, n};
 
 /// A wall run: one box per straight piece, lengthened by the wall's thickness so that pieces
 /// meet at their corners. Local −z of every piece is the field side (the centreline keeps the
 /// field on its left, `Footprint::Wall`), where the `curtain` rule puts the parapet.
 /// `textures`: the wall samples' list, when there are any (one of them per shape, tinted by the
 /// stone colour, as the library's structures take them).
-pub(super) fn run(s: &Structure, textures: Option<&str>) -> WallText {
-    let mut out = WallText::default();
+pub(super) fn run(s: &Structure, textures: Option<&str>) -> Part {
+    let mut out = Part::default();
     let Footprint::Wall { thickness, .. } = s.footprint else {
         return out;
     };
@@ -66,9 +58,9 @@ pub(super) fn run(s: &Structure, textures: Option<&str>) -> WallText {
 
 /// The parameters and rules every curtain piece and inner wall shares; `lowest` is the lowest
 /// curtain (model units), so that the parapet always fits, `u` the units per metre.
-pub(super) fn shared(lowest: f64, u: f64) -> WallText {
+pub(super) fn shared(lowest: f64, u: f64) -> Part {
     let parapet = (1.8 * u).min(0.3 * lowest);
-    WallText {
+    Part {
         params: format!(
             "\n// The curtain's parapet (§7.2.2's curtain_wall.vsg): height, merlon width, wall-walk paving.\nfloat curtainParapetH = {};\nfloat curtainMerlon = {};\nfloat curtainWalkT = {};\n",
             n(parapet),

@@ -30,13 +30,6 @@ fn id_base(role: Role, l: Label) -> &'static str {
     }
 }
 
-fn is_room(l: Label) -> bool {
-    matches!(
-        l,
-        Label::TowerRoom | Label::GreatHall | Label::Chapel | Label::UnknownRoom
-    )
-}
-
 /// The keep's default height: half as high again as the towers' class height of §5.3 (the
 /// text's classes have no keep; a donjon rises above its towers).
 pub(crate) const KEEP_OVER_TOWERS: f64 = 1.5;
@@ -211,7 +204,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
         .faces
         .iter()
         .enumerate()
-        .filter(|(_, f)| is_room(f.label))
+        .filter(|(_, f)| f.label.is_room())
         .filter_map(|(fi, face)| {
             let t_px = if face.edges.is_empty() {
                 2.0

@@ -92,13 +92,6 @@ fn weighted_median(items: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
     v.last().map(|x| x.0)
 }
 
-fn is_room(l: Label) -> bool {
-    matches!(
-        l,
-        Label::TowerRoom | Label::GreatHall | Label::Chapel | Label::UnknownRoom
-    )
-}
-
 /// The plan's wall runs. `owned[e]`: edge `e` is a wall of a room built as its own structure;
 /// `tower_owned[e]`: … of a tower (a curtain stops at a tower, but runs along a range).
 pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> Vec<Run> {
@@ -120,7 +113,7 @@ pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> V
                 return Becomes::Nothing;
             }
             let divides = faces[e].len() >= 2;
-            let partition = divides && labels.iter().any(|&l| is_room(l));
+            let partition = divides && labels.iter().any(|&l| l.is_room());
             let thick = edge.thickness / typical;
             if (!divides && thick < SPUR_FROM) || (!partition && thick < LINE_BELOW) {
                 Becomes::Nothing
@@ -143,7 +136,7 @@ pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> V
             let lone_room = closed
                 && !inner.is_empty()
                 && inner.iter().all(|&f| f == inner[0])
-                && is_room(plan.faces[inner[0]].label);
+                && plan.faces[inner[0]].label.is_room();
             if lone_room && edges.iter().all(|&e| owned[e]) {
                 continue;
             }
