@@ -99,12 +99,13 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
 }
 
 /// What the model holds, as an expert names it (issue 25): the structures by role, how high,
-/// and which heights were measured, lent by a measured structure alike, or defaulted.
+/// and which heights were set by the user, measured, lent by a measured structure alike, or
+/// defaulted.
 fn what_was_built(h: &mut String, e: &Estimate) {
     let unit = e.scale.units.symbol();
     let _ = writeln!(
         h,
-        "<h2>What was built</h2><p>{}.</p><table><tr><th>structures</th><th>height</th><th>heights measured · lent · default</th><th>ids</th></tr>",
+        "<h2>What was built</h2><p>{}.</p><table><tr><th>structures</th><th>height</th><th>heights set by you · measured · lent · default</th><th>ids</th></tr>",
         esc(&integrate::summary::line(e))
     );
     for r in integrate::summary::by_role(e) {
@@ -120,8 +121,9 @@ fn what_was_built(h: &mut String, e: &Estimate) {
         };
         let _ = writeln!(
             h,
-            "<tr><td><b>{}</b>{length}</td><td>{height}</td><td>{} · {} · {}</td><td>{}</td></tr>",
+            "<tr><td><b>{}</b>{length}</td><td>{height}</td><td>{} · {} · {} · {}</td><td>{}</td></tr>",
             r.counted(),
+            r.user,
             r.measured,
             r.lent,
             r.defaulted,

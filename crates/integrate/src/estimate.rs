@@ -254,7 +254,8 @@ pub struct Element {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Provenance {
     /// The input image (plan or façade photo), several joined by ", " when a value was
-    /// estimated jointly from them (§6.1.2), or "default" for class defaults.
+    /// estimated jointly from them (§6.1.2), "default" for class defaults, or "user" for a
+    /// value the user set in PROJECT.toml (the step then names the entry, issue 22).
     pub image: String,
     /// The pipeline step, e.g. "§5.1.5 circle fit of plan face 4".
     pub step: String,
@@ -267,10 +268,14 @@ pub struct Provenance {
     pub lent_by: Option<String>,
 }
 
-/// How a value was had: measured on this structure, lent by a measured one alike, or a
-/// default.
+/// The `image` of a value the user set (issue 22).
+pub const USER: &str = "user";
+
+/// How a value was had: set by the user, measured on this structure, lent by a measured one
+/// alike, or a default.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Source {
+    User,
     Measured,
     Lent,
     Default,
@@ -312,9 +317,16 @@ impl Provenance {
         }
     }
 
-    /// Measured, lent or default (a default's `image` is "default").
+    /// A value the user set: `entry` names the PROJECT.toml entry, e.g. `[[structure]] #2`.
+    pub fn user(entry: impl Into<String>) -> Provenance {
+        Provenance::new(USER, entry, None)
+    }
+
+    /// User, measured, lent or default (a default's `image` is "default", a user's "user").
     pub fn source(&self) -> Source {
-        if self.image == "default" {
+        if self.image == USER {
+            Source::User
+        } else if self.image == "default" {
             Source::Default
         } else if self.lent_by.is_some() {
             Source::Lent

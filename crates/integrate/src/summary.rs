@@ -12,7 +12,8 @@ pub struct RoleSummary {
     pub ids: Vec<String>,
     /// Lowest and highest, model units.
     pub heights: [f64; 2],
-    /// Heights by source: measured, lent, default.
+    /// Heights by source: set by the user, measured, lent, default.
+    pub user: usize,
     pub measured: usize,
     pub lent: usize,
     pub defaulted: usize,
@@ -32,6 +33,7 @@ pub fn by_role(e: &Estimate) -> Vec<RoleSummary> {
                 role: s.role,
                 ids: Vec::new(),
                 heights: [f64::INFINITY, f64::NEG_INFINITY],
+                user: 0,
                 measured: 0,
                 lent: 0,
                 defaulted: 0,
@@ -42,6 +44,7 @@ pub fn by_role(e: &Estimate) -> Vec<RoleSummary> {
         line.ids.push(s.id.clone());
         line.heights = [line.heights[0].min(s.height), line.heights[1].max(s.height)];
         match s.provenance.get("height").map(|p| p.source()) {
+            Some(Source::User) => line.user += 1,
             Some(Source::Measured) => line.measured += 1,
             Some(Source::Lent) => line.lent += 1,
             Some(Source::Default) | None => line.defaulted += 1,
@@ -81,7 +84,7 @@ pub fn line(e: &Estimate) -> String {
     by_role(e)
         .iter()
         .map(|r| {
-            let told: Vec<String> = [(r.measured, "measured"), (r.lent, "lent")]
+            let told: Vec<String> = [(r.user, "set by you"), (r.measured, "measured"), (r.lent, "lent")]
                 .iter()
                 .filter(|(k, _)| *k > 0)
                 .map(|(k, what)| format!("{k} {what}"))
