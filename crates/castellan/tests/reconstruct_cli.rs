@@ -291,3 +291,74 @@ fn an_inverted_training_box_in_a_photo_is_refused() {
         "[[facade]] #2 (image = \"keep_south_far.png\"): keep_south_far.png: training boxes: bad training data: wall box 0 [50.0, 50.0, 10.0, 10.0] is inverted",
     );
 }
+
+/// Issue 22: Coucy with the donjon corrected by the user — named the keep, 55 m high (the
+/// published height), under a cone, crenellated — is the model's tallest structure at that
+/// height, every value the user set with the source "user".
+#[test]
+fn the_coucy_donjon_corrected_is_the_tallest_at_the_height_set() {
+    let coucy = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coucy");
+    let dir = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(&coucy).unwrap() {
+        let p = entry.unwrap().path();
+        std::fs::copy(&p, dir.path().join(p.file_name().unwrap())).unwrap();
+    }
+    let toml = std::fs::read_to_string(dir.path().join("PROJECT.toml")).unwrap();
+    let fixed = format!(
+        "{toml}\n[[structure]]\npoint = [215, 332]\nheight = 55.0\nroof = \"cone\"\ncrenellated = true\nkeep = true\n"
+    );
+    std::fs::write(dir.path().join("PROJECT.toml"), fixed).unwrap();
+    let out = dir.path().join("out");
+    let assert = castellan()
+        .arg("reconstruct")
+        .arg(dir.path().join("PROJECT.toml"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains("1 keep (1 user-set height)"), "{stderr}");
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("estimate.json")).unwrap()).unwrap();
+    let structures = estimate["structures"].as_array().unwrap();
+    let tallest = structures
+        .iter()
+        .max_by(|a, b| {
+            a["height"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["height"].as_f64().unwrap())
+        })
+        .unwrap();
+    assert_eq!(tallest["role"], "keep");
+    assert_eq!(tallest["footprint"]["type"], "circle");
+    assert_eq!(tallest["height"], 55.0);
+    assert_eq!(tallest["roof"], "cone");
+    for key in ["height", "roof", "crenellated", "role"] {
+        assert_eq!(tallest["provenance"][key]["image"], "user", "{key}");
+        assert_eq!(tallest["provenance"][key]["step"], "[[structure]] #1");
+    }
+    let program = std::fs::read_to_string(out.join("model.vsg")).unwrap();
+    let id = tallest["id"].as_str().unwrap();
+    assert!(
+        program.contains(&format!("{id}Roof :: {{roof}};")),
+        "{program}"
+    );
+    assert!(program.contains(&format!("{id}Battlement ::")), "{program}");
+}
+
+#[test]
+fn a_correction_that_cannot_apply_is_named_and_nothing_is_written() {
+    fails_naming(
+        |t| format!("{t}\n[[label]]\npoint = [9999, 5]\nlabel = \"chapel\"\n"),
+        "[[label]] #1: point [9999, 5] is outside the plan",
+    );
+    fails_naming(
+        |t| format!("{t}\n[[structure]]\npoint = [5, 5]\nheight = 20.0\n"),
+        "[[structure]] #1: no structure is built at [5, 5]",
+    );
+    fails_naming(
+        |t| format!("{t}\n[[structure]]\npoint = [320, 270]\nroof = \"dome\"\n"),
+        "unknown variant `dome`",
+    );
+}

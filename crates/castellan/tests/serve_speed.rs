@@ -154,3 +154,41 @@ fn overlays_of_a_megapixel_photo_against_the_commands() {
     eprintln!("serve speed figures: {figures}");
     assert!(mpx > 0.9 && mpx < 1.2, "{mpx} Mpx");
 }
+
+/// Issue 22: a relabel on a 1000-px plan — the correction sent, checked and saved, the labels
+/// overlay redrawn from the kept parse and fetched — against parsing the plan again.
+#[test]
+#[ignore = "a measurement: run with --ignored --nocapture (docs/serve.md)"]
+fn a_relabel_on_a_1000_px_plan_against_a_parse() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = demo_project(tmp.path());
+    // plan::synth's castle at 1.25 ×: 1000 × 750 px.
+    let (plan, _) = plan::synth::castle(3, 1.25, 1000, 750);
+    plan.save(dir.join("big.png")).unwrap();
+    std::fs::write(dir.join("PROJECT.toml"), "plan = \"big.png\"\n").unwrap();
+    let server = Server::start(&dir);
+    let t = Instant::now();
+    let (status, body) = server.request("POST", "/api/plan", b"");
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let parse = ms(t);
+    let labels = ["chapel", "great_hall", "courtyard", "unknown_room"];
+    let mut round = vec![];
+    let mut server_ms = vec![];
+    for i in 0..9 {
+        let fix = serde_json::json!({"label": [{"point": [500, 380], "label": labels[i % labels.len()]}]});
+        let t = Instant::now();
+        let (status, body) = server.request("PUT", "/api/corrections", fix.to_string().as_bytes());
+        assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+        let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
+        let (status, _) = server.request("GET", v["overlay"].as_str().unwrap(), b"");
+        assert_eq!(status, 200);
+        round.push(ms(t));
+        server_ms.push(v["ms"].as_f64().unwrap());
+    }
+    println!(
+        "relabel on a 1000 × 750 plan: round trip median {:.0} ms (server {:.0} ms), the first parse {parse:.0} ms; ratio {:.2}",
+        median(round.clone()),
+        median(server_ms),
+        median(round) / parse
+    );
+}

@@ -258,6 +258,8 @@ mod tests {
             wall_thickness: 1.0,
             facades: vec![],
             children: vec![],
+            roof: None,
+            crenellated: None,
             provenance: Default::default(),
         };
         let big = mk(rect());
@@ -286,6 +288,8 @@ mod tests {
             wall_thickness: 2.0,
             facades: vec![],
             children: vec![],
+            roof: None,
+            crenellated: None,
             provenance: Default::default(),
         };
         let tower = Structure {

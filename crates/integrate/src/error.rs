@@ -16,6 +16,9 @@ pub enum IntegrateError {
         why.metres
     )]
     NoScaleBar { plan: String, why: NoScaleBar },
+    /// A `[[structure]]` correction that cannot apply; the message names the entry.
+    #[error("{0}")]
+    Correction(String),
     #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
     Correspondence {
         index: usize,

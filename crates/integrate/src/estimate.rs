@@ -44,6 +44,14 @@ pub struct Structure {
     pub height: f64,
     pub wall_thickness: f64,
     pub facades: Vec<MappedFacade>,
+    /// The roof the user chose (`[[structure]] roof`, issue 22); absent, the library's roof
+    /// for the structure's kind (a cone on round towers, a gable on keeps, flat blocks).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roof: Option<Roof>,
+    /// Crenellation on or off as the user chose (`[[structure]] crenellated`); absent, the
+    /// library's (curtains and square towers crenellated, the rest not).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crenellated: Option<bool>,
     /// The semantic hierarchy under the root (§6.1.3).
     pub children: Vec<Element>,
     /// Source of each parameter, by name (`footprint`, `height`, `wall_thickness`, …).
@@ -99,6 +107,37 @@ impl Role {
             Role::Range => "range",
             Role::Room => "room",
             Role::Wall => "wall",
+        }
+    }
+}
+
+/// A roof the user can choose for a structure (issue 22).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Roof {
+    /// A cone over a round footprint; over a rectangle, a pyramid (a cone has no corners).
+    Cone,
+    /// Four faces to a point over the footprint's rectangle (a circle's circumscribed square).
+    Pyramid,
+    /// Four faces to a ridge along the longer side.
+    Hipped,
+    /// Two faces to a ridge along the longer side, gable ends on the shorter.
+    Gable,
+    /// A flat slab.
+    Flat,
+    /// No roof: an open top.
+    None,
+}
+
+impl Roof {
+    pub fn name(self) -> &'static str {
+        match self {
+            Roof::Cone => "cone",
+            Roof::Pyramid => "pyramid",
+            Roof::Hipped => "hipped",
+            Roof::Gable => "gable",
+            Roof::Flat => "flat",
+            Roof::None => "none",
         }
     }
 }

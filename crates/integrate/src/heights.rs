@@ -117,6 +117,8 @@ mod tests {
             wall_thickness: 2.0,
             facades: vec![],
             children: vec![],
+            roof: None,
+            crenellated: None,
             provenance,
         }
     }

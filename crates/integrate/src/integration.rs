@@ -21,6 +21,7 @@ use crate::project::Correspondence;
 use crate::textures::Texture;
 use plan::scale::{GivenScale, ModelScale, ScaleNote};
 
+use crate::corrections::StructureFix;
 use crate::error::IntegrateError;
 
 /// Everything integration needs, already estimated.
@@ -35,6 +36,8 @@ pub struct Inputs<'a> {
     /// Gothic façade estimates (ch. 4).
     pub gothics: &'a [GothicFacadeEstimate],
     pub correspondences: &'a [Correspondence],
+    /// The user's `[[structure]]` corrections (issue 22).
+    pub structure_fixes: &'a [StructureFix],
 }
 
 /// One façade as mapped by a correspondence.
@@ -70,6 +73,9 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
         assumptions.push(why.clone());
     }
     let mut structures = crate::structures::from_plan(plan, inputs.plan_image, &frame);
+    let fixed = crate::corrections::targets(&structures, inputs.structure_fixes, plan, &frame)
+        .map_err(IntegrateError::Correction)?;
+    crate::corrections::apply_roles(&mut structures, inputs.structure_fixes, &fixed);
     let mut mappings: Vec<Vec<Mapping>> = (0..structures.len()).map(|_| Vec::new()).collect();
     let mut gothic_mappings: Vec<Vec<(usize, Placement)>> =
         (0..structures.len()).map(|_| Vec::new()).collect();
@@ -263,6 +269,8 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
         }
     }
     crate::heights::propagate(&mut structures);
+    crate::corrections::apply_values(&mut structures, inputs.structure_fixes, &fixed, &frame)
+        .map_err(IntegrateError::Correction)?;
     let mut estimate = Estimate {
         scale: frame,
         plan: PlanSource {

@@ -28,6 +28,7 @@
 //!     facades: &[],
 //!     gothics: &[],
 //!     correspondences: &[],
+//!     structure_fixes: &[],
 //! })
 //! .unwrap()
 //! .estimate;
@@ -39,6 +40,7 @@
 //! ```
 
 pub mod agreement;
+pub mod corrections;
 pub mod correspond;
 pub mod error;
 pub mod estimate;

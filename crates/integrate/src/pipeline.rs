@@ -15,7 +15,7 @@ use facade::classify::{Method, Training};
 use facade::rectify::ManualLines;
 use image::{DynamicImage, GrayImage, RgbImage};
 use plan::ParsedPlan;
-use plan::scale::{GivenScale, ScaleNote};
+use plan::scale::ScaleNote;
 use rayon::prelude::*;
 
 use crate::estimate::Estimate;
@@ -142,12 +142,30 @@ pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, Pi
         message: e.to_string(),
     })?;
     let grey = image.to_luma8();
+    corrected_stage(project, parsed, &grey, options.ink)
+}
+
+/// The plan stage from a parsed drawing: the user's corrections applied (issue 22), then its
+/// pictures. `serve` keeps the parse and calls this alone when only corrections changed.
+pub fn corrected_stage(
+    project: &Project,
+    mut parsed: ParsedPlan,
+    grey: &image::GrayImage,
+    ink: plan::ink::InkMethod,
+) -> Result<PlanStage, PipelineError> {
+    let notes = plan::corrections::apply(&mut parsed, project.plan_fixes()).map_err(|e| {
+        PipelineError::Entry {
+            entry: format!("{} #{}", e.table.name(), e.index),
+            message: e.why,
+        }
+    })?;
+    parsed.warnings.extend(notes);
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
         caption: Some("Plan labels (ch. 5)".into()),
-        picture: Picture::Rgb(plan::output::overlay(&parsed, &grey)),
+        picture: Picture::Rgb(plan::output::overlay(&parsed, grey)),
     };
-    let how = match options.ink {
+    let how = match ink {
         plan::ink::InkMethod::Learned => "learned wall ink",
         plan::ink::InkMethod::Rules => "threshold and clean-up rules",
     };
@@ -157,7 +175,7 @@ pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, Pi
             "Plan walls ({how}, §5.1.2) — {}",
             plan::output::WALLS_LEGEND
         )),
-        picture: Picture::Rgb(plan::output::walls_overlay(&parsed, &grey)),
+        picture: Picture::Rgb(plan::output::walls_overlay(&parsed, grey)),
     };
     let svg = plan::output::svg(&parsed);
     Ok(PlanStage {
@@ -437,7 +455,8 @@ pub fn reconstruct(
     let integrated = integrate(&Inputs {
         plan: &plan_stage.parsed,
         plan_image: &project.plan,
-        scale: GivenScale::from_options(project.metres_per_pixel, project.scale_bar_metres),
+        scale: project.given_scale(),
+        structure_fixes: &project.structure_fixes,
         facades: &estimates,
         gothics: &gothics,
         correspondences: &project.correspondences,

@@ -3,7 +3,10 @@
 //! shapes. Parsing is pure (text in, typed project out); errors name the entry at fault.
 
 use facade::classify::Training;
+use plan::scale::GivenScale;
 use serde::{Deserialize, Serialize};
+
+use crate::corrections::{ScaleLine, StructureFix};
 
 /// A whole reconstruction project; paths are relative to the PROJECT.toml file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -36,6 +39,22 @@ pub struct Project {
     pub ink_strokes: Vec<plan::ink::refine::InkStroke>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
+    /// The scale from two plan points and the length between them (`castellan serve`'s scale
+    /// tool); it wins over `scale` and `scale_bar`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale_line: Option<ScaleLine>,
+    /// The user's corrections of the plan's regions (issue 22), by plan pixel.
+    #[serde(default, rename = "label", skip_serializing_if = "Vec::is_empty")]
+    pub label_fixes: Vec<plan::corrections::LabelFix>,
+    /// Towers the parser missed or invented.
+    #[serde(default, rename = "tower", skip_serializing_if = "Vec::is_empty")]
+    pub tower_fixes: Vec<plan::corrections::TowerFix>,
+    /// Regions that are one.
+    #[serde(default, rename = "merge", skip_serializing_if = "Vec::is_empty")]
+    pub merges: Vec<plan::corrections::MergeFix>,
+    /// Heights, roofs, crenellation and the keep, by plan pixel.
+    #[serde(default, rename = "structure", skip_serializing_if = "Vec::is_empty")]
+    pub structure_fixes: Vec<StructureFix>,
     #[serde(default, rename = "facade", skip_serializing_if = "Vec::is_empty")]
     pub facades: Vec<FacadeEntry>,
     /// Gothic façade photos (ch. 4): their arches and stones replace the wall they map to.
@@ -159,6 +178,24 @@ impl Project {
         }
     }
 
+    /// What the project says of the drawing's scale: the clicked `scale_line` first, then
+    /// `scale_bar`, then `scale`.
+    pub fn given_scale(&self) -> GivenScale {
+        match &self.scale_line {
+            Some(line) => GivenScale::from_options(Some(line.metres_per_pixel()), None),
+            None => GivenScale::from_options(self.metres_per_pixel, self.scale_bar_metres),
+        }
+    }
+
+    /// The plan's corrections, in the order they apply.
+    pub fn plan_fixes(&self) -> plan::corrections::PlanFixes<'_> {
+        plan::corrections::PlanFixes {
+            merges: &self.merges,
+            labels: &self.label_fixes,
+            towers: &self.tower_fixes,
+        }
+    }
+
     /// Parses and checks a PROJECT.toml text.
     pub fn from_toml(text: &str) -> Result<Project, ProjectError> {
         let project = Project::parse_unchecked(text)?;
@@ -209,6 +246,9 @@ impl Project {
             if self.metres_per_pixel.is_some() {
                 return bad("give either scale (metres per pixel) or scale_bar (the drawn bar's length in metres), not both".into());
             }
+        }
+        if let Some(Err(why)) = self.scale_line.as_ref().map(ScaleLine::check) {
+            return bad(format!("scale_line: {why}"));
         }
         if let Some(t) = self.thin_lines
             && !(0.0..=1.0).contains(&t)

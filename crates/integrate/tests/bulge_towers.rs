@@ -30,6 +30,7 @@ fn estimate(plan: &plan::ParsedPlan, scale: Option<f64>) -> Estimate {
         facades: &[],
         gothics: &[],
         correspondences: &[],
+        structure_fixes: &[],
     })
     .unwrap()
     .estimate
@@ -272,6 +273,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
             facade_point: photo.facade_point,
             plan_points: vec![b.center],
         }],
+        structure_fixes: &[],
     })
     .unwrap()
     .estimate;

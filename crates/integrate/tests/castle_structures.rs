@@ -25,6 +25,7 @@ fn estimate(castle: &Castle) -> Estimate {
         facades: &[],
         gothics: &[],
         correspondences: &[],
+        structure_fixes: &[],
     })
     .unwrap()
     .estimate

@@ -73,6 +73,7 @@ fn keep_and_towers_match_facades_and_plan() {
         facades: &estimates,
         gothics: &[],
         correspondences: &correspondences,
+        structure_fixes: &[],
     })
     .unwrap();
     // Each mapped façade names the crop of its photo that integration returns.
@@ -206,6 +207,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         facades: std::slice::from_ref(&estimate),
         gothics: &[],
         correspondences: std::slice::from_ref(&correspondence),
+        structure_fixes: &[],
     })
     .unwrap()
     .estimate;
@@ -280,6 +282,7 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
         facades: &[],
         gothics: &gothics,
         correspondences: std::slice::from_ref(&correspondence),
+        structure_fixes: &[],
     })
     .unwrap();
     let generated = result.gothic_programs.clone();

@@ -42,6 +42,7 @@
 pub mod binarize;
 pub mod bulges;
 pub mod clean;
+pub mod corrections;
 pub mod dashes;
 pub mod eval;
 pub mod extrude;
@@ -304,7 +305,7 @@ const HATCHED_SHARE: f64 = 0.05;
 /// tower-wall edges one by one: on real drawings a tower's wall is often split into several
 /// edges by the walls meeting it (Coucy: 5 towers, 18 tower-wall edges), so the edge count
 /// overstates the towers (docs/plan.md, development set).
-fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
+pub(crate) fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
     let mut parent: Vec<usize> = (0..vertices).collect();
     fn root(parent: &mut [usize], mut v: usize) -> usize {
         while parent[v] != v {

@@ -11,7 +11,10 @@ use std::time::Instant;
 use axum::Json;
 use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
+use image::GrayImage;
+use integrate::pipeline::{self, Files};
 use integrate::project::{FacadeEntry, Project};
+use plan::ParsedPlan;
 use plan::clean::Cleaning;
 use serde_json::{Value, json};
 
@@ -29,6 +32,17 @@ pub struct App {
     progress: Mutex<Progress>,
     /// How long each step took last time, so the page can show how far along a step is.
     durations: Mutex<HashMap<String, u128>>,
+    /// The plan as last parsed, before the user's corrections (issue 22).
+    kept_parse: Mutex<Option<KeptParse>>,
+}
+
+/// The plan as §5.1.2–5.1.6 last parsed it, before the user's corrections, and a hash of what
+/// it was parsed from (the drawing's bytes and the plan options): a correction redraws the
+/// overlay from it at once instead of parsing again.
+struct KeptParse {
+    key: u64,
+    parsed: ParsedPlan,
+    grey: GrayImage,
 }
 
 /// What the page polls while a long step runs.
@@ -62,6 +76,7 @@ impl App {
             },
             progress: Mutex::new(Progress::default()),
             durations: Mutex::new(HashMap::new()),
+            kept_parse: Mutex::new(None),
         })
     }
 
@@ -178,6 +193,73 @@ where
     })
     .await
     .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?
+}
+
+/// The project's plan parsed (§5.1.2–5.1.6), before the user's corrections: kept from the last
+/// parse when neither the drawing nor the plan options changed since.
+pub(super) fn parsed_plan(app: &App, p: &Project) -> Result<(ParsedPlan, GrayImage), ApiError> {
+    use std::hash::{Hash, Hasher};
+    let path = app.store.path(&p.plan).map_err(err(StatusCode::CONFLICT))?;
+    let bytes = std::fs::read(&path)
+        .map_err(|e| ApiError(StatusCode::CONFLICT, format!("plan = \"{}\": {e}", p.plan)))?;
+    let mut h = std::hash::DefaultHasher::new();
+    bytes.hash(&mut h);
+    format!(
+        "{:?} {:?} {:?} {:?} {:?}",
+        p.thin_lines, p.hatching, p.ink, p.ink_strokes, p.seed
+    )
+    .hash(&mut h);
+    let key = h.finish();
+    let mut kept = app
+        .kept_parse
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    if let Some(k) = kept.as_ref().filter(|k| k.key == key) {
+        return Ok((k.parsed.clone(), k.grey.clone()));
+    }
+    let image = app
+        .store
+        .image(&p.plan)
+        .map_err(|e| ApiError(StatusCode::CONFLICT, e))?;
+    let parsed = plan::parse(&image, &p.plan_options()).map_err(|e| {
+        ApiError(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            format!("plan = \"{}\": {e}", p.plan),
+        )
+    })?;
+    let grey = image.to_luma8();
+    *kept = Some(KeptParse {
+        key,
+        parsed: parsed.clone(),
+        grey: grey.clone(),
+    });
+    Ok((parsed, grey))
+}
+
+/// The plan stage as `reconstruct` makes it: the parse (kept when unchanged) with the user's
+/// corrections, and its overlays.
+pub(super) fn plan_stage(app: &App, p: &Project) -> Result<pipeline::PlanStage, ApiError> {
+    let (parsed, grey) = parsed_plan(app, p)?;
+    pipeline::corrected_stage(p, parsed, &grey, p.ink.unwrap_or_default())
+        .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))
+}
+
+/// Writes one output file of a stage into the project.
+pub(super) fn save(app: &App, name: &str, bytes: Vec<u8>) -> Result<(), ApiError> {
+    app.store
+        .commit(None, vec![(name.to_string(), bytes)])
+        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
+}
+
+/// Writes a pipeline overlay under out/, as `reconstruct` does; returns its project name.
+pub(super) fn write_overlay(app: &App, overlay: &pipeline::Overlay) -> Result<String, ApiError> {
+    let name = format!("out/{}", overlay.name);
+    let bytes = overlay
+        .picture
+        .png()
+        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?;
+    save(app, &name, bytes)?;
+    Ok(name)
 }
 
 pub(super) fn file_url(name: &str) -> String {

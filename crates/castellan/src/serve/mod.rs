@@ -7,6 +7,9 @@ mod access;
 mod app;
 mod clean;
 mod conn;
+mod corrections;
+#[cfg(test)]
+mod corrections_tests;
 #[cfg(test)]
 mod edit_tests;
 #[cfg(test)]
@@ -18,6 +21,8 @@ mod ink;
 mod lines;
 mod preview;
 mod project;
+#[cfg(test)]
+mod simulated_user_tests;
 mod stages;
 mod store;
 #[cfg(test)]
@@ -140,6 +145,13 @@ pub fn router(app: Arc<app::App>) -> Router {
         .route("/api/plan/binary", get(clean::binary))
         .route("/api/plan/cleaning", put(clean::save))
         .route("/api/plan/ink", put(ink::save))
+        .route("/api/plan/settings", put(corrections::settings))
+        .route(
+            "/api/corrections",
+            get(corrections::get).put(corrections::put),
+        )
+        .route("/api/structure", get(corrections::at))
+        .route("/api/plan/at", get(corrections::label_at))
         .route("/api/facades/{name}/rectify", post(stages::rectify))
         .route("/api/facades/{name}/training", put(stages::training))
         .route(

@@ -44,6 +44,18 @@ pub async fn project(State(app): State<Arc<App>>) -> Saved {
             .ok()
             .flatten()
             .map(|_| outputs());
+        // The last parse's overlays, shown again when the page is reloaded.
+        let overlays = app
+            .store
+            .existing("out/overlays/plan_labels.png")
+            .ok()
+            .flatten()
+            .map(|_| {
+                json!({
+                    "labels": file_url("out/overlays/plan_labels.png"),
+                    "walls": file_url("out/overlays/plan_walls.png"),
+                })
+            });
         versioned(
             &app.store,
             json!({
@@ -53,6 +65,7 @@ pub async fn project(State(app): State<Arc<App>>) -> Saved {
                 "problems": problems,
                 "cleaning": cleaning,
                 "outputs": model,
+                "plan_overlays": overlays,
             }),
         )
     })
@@ -108,9 +121,15 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
         }
         match (kind.as_str(), project.as_mut()) {
             ("plan", Some(p)) => {
-                // Strokes taught on the old drawing mean nothing on a new one.
+                // Strokes, corrections and a clicked scale on the old drawing mean nothing on a
+                // new one.
                 p.plan = name.clone();
                 p.ink_strokes.clear();
+                p.scale_line = None;
+                p.label_fixes.clear();
+                p.tower_fixes.clear();
+                p.merges.clear();
+                p.structure_fixes.clear();
             }
             ("plan", None) => {
                 project = Some(Project {
@@ -122,6 +141,11 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     ink: None,
                     ink_strokes: vec![],
                     seed: None,
+                    scale_line: None,
+                    label_fixes: vec![],
+                    tower_fixes: vec![],
+                    merges: vec![],
+                    structure_fixes: vec![],
                     facades: vec![],
                     gothics: vec![],
                     correspondences: vec![],

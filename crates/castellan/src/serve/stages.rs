@@ -17,7 +17,7 @@ use serde_json::{Value, json};
 
 use super::app::{
     ApiError, App, Reply, Saved, blocking, check_version, err, facade_for_edit, facade_index,
-    file_url, find_facade, if_match, outputs, versioned,
+    file_url, find_facade, if_match, outputs, plan_stage, save, versioned, write_overlay,
 };
 use super::store::PROJECT_FILE;
 use crate::images::{png, read_image};
@@ -55,21 +55,13 @@ where
     save(app, name, bytes)
 }
 
-/// Writes one output file of a stage into the project.
-fn save(app: &App, name: &str, bytes: Vec<u8>) -> Result<(), ApiError> {
-    app.store
-        .commit(None, vec![(name.to_string(), bytes)])
-        .map_err(err(StatusCode::INTERNAL_SERVER_ERROR))
-}
-
 /// POST /api/plan: the plan stage (ch. 5) → label and wall overlays, as `reconstruct` makes
 /// them.
 pub async fn plan(State(app): State<Arc<App>>) -> Reply {
     blocking(app, "plan", |app| {
         let p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let t = Instant::now();
-        let stage = pipeline::parse_plan(&p, &app.store)
-            .map_err(|e| ApiError(StatusCode::UNPROCESSABLE_ENTITY, e.to_string()))?;
+        let stage = plan_stage(app, &p)?;
         let overlay = write_overlay(app, &stage.overlay)?;
         let walls = write_overlay(app, &stage.walls)?;
         let parsed = &stage.parsed;
@@ -80,21 +72,12 @@ pub async fn plan(State(app): State<Arc<App>>) -> Reply {
             "ink_strokes": p.ink_strokes.len(),
             "width": parsed.width, "height": parsed.height,
             "faces": parsed.faces.len(), "edges": parsed.edges.len(),
+            "towers": parsed.towers,
+            "warnings": parsed.warnings,
             "ms": t.elapsed().as_millis(),
         })))
     })
     .await
-}
-
-/// Writes a pipeline overlay under out/, as `reconstruct` does; returns its project name.
-fn write_overlay(app: &App, overlay: &pipeline::Overlay) -> Result<String, ApiError> {
-    let name = format!("out/{}", overlay.name);
-    let bytes = overlay
-        .picture
-        .png()
-        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))?;
-    save(app, &name, bytes)?;
-    Ok(name)
 }
 
 /// POST /api/facades/{name}/rectify: §3.1.1 → line-family overlay and the rectified photo.

@@ -3,6 +3,7 @@
 // façade overlay) → correspondences (click a façade point, then plan point(s)) → reconstruction
 // shown in the model viewer. Every change is saved by the server.
 import { showModel } from './viewer.js';
+import { initPlanFixes } from './plan_fix.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
@@ -248,12 +249,17 @@ $('clean-reset').addEventListener('click', () => {
 async function parsePlan() {
   const r = await step('Parsing the plan', () => api('POST', '/api/plan'));
   if (!r) return;
-  $('plan-info').textContent = `${r.faces} regions, ${r.edges} edges in ${r.ms} ms`;
+  const warned = r.warnings.length ? `; ${r.warnings.join('; ')}` : '';
+  $('plan-info').textContent = `${r.towers} towers, ${r.faces} regions, ${r.edges} edges in ${r.ms} ms${warned}`;
   $('plan-info').dataset.faces = String(r.faces);
+  $('plan-info').dataset.towers = String(r.towers);
   await showOverlay('plan-walls', r.walls);
   await showOverlay('plan-overlay', r.overlay);
+  await planFixes.showOverlay(r.overlay);
   markDone('plan');
 }
+
+const planFixes = initPlanFixes({ $, api, step, status, fresh, loadImage, canvasImage, toImagePixels, cross, parsePlan });
 
 $('clean-save').addEventListener('click', async () => {
   const r = await step('Saving the cleaned plan', () =>
@@ -696,6 +702,13 @@ async function refresh() {
   select.replaceChildren(...facades.map((f) => new Option(f.image, f.image)));
   document.title = `castellan — ${p.dir}`;
   await showPlan();
+  await planFixes.load(p.project);
+  // The last parse's overlays, as they were left (the page may have been reloaded).
+  if (p.project && p.plan_overlays) {
+    await showOverlay('plan-walls', p.plan_overlays.walls);
+    await showOverlay('plan-overlay', p.plan_overlays.labels);
+    await planFixes.showOverlay(p.plan_overlays.labels).catch(() => {});
+  }
   if (facades.length && !facades.some((f) => f.image === state.facade)) await selectFacade(facades[0].image);
   return p;
 }

@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use crate::estimate::{Footprint, Structure};
+use crate::estimate::{Footprint, Roof, Structure};
 
 use super::common::{Part, n};
 
@@ -35,7 +35,13 @@ pub(super) fn room(s: &Structure) -> Part {
             id.clone(),
         ));
     }
-    let _ = writeln!(out.rules, "{id} :: {{roomBlock}};");
+    // The user may take the flat roof off (`[[structure]] roof = "none"`, issue 22).
+    let body = if s.roof == Some(Roof::None) {
+        "wallStone"
+    } else {
+        "roomBlock"
+    };
+    let _ = writeln!(out.rules, "{id} :: {{{body}}};");
     out
 }
 

@@ -9,12 +9,13 @@ mod blocks;
 mod common;
 mod facades;
 mod gate;
+mod roofs;
 mod walls;
 
 use std::f64::consts::TAU;
 use std::fmt::Write;
 
-use crate::estimate::{Estimate, Footprint, Kind, Role, Structure};
+use crate::estimate::{Estimate, Footprint, Kind, Role, Roof, Structure};
 use common::{Part, n, storeys, string_list};
 use facades::hollow_box_with_facades;
 
@@ -223,6 +224,10 @@ pub fn generate(e: &Estimate, o: &Options) -> String {
             }
         }
     }
+    for s in &e.structures {
+        w.add(roofs::chosen(s, u));
+        w.add(roofs::battlements(s, u));
+    }
     let lowest_wall = e
         .structures
         .iter()
@@ -324,7 +329,9 @@ impl Writer {
         );
         let args: Vec<String> = args
             .iter()
-            .map(|(k, v)| format!("{k} = {}", n(*v)))
+            .copied()
+            .chain(roofs::library_overrides(file, s))
+            .map(|(k, v)| format!("{k} = {}", n(v)))
             .collect();
         let _ = writeln!(
             self.imports,
@@ -346,9 +353,9 @@ impl Writer {
     }
 
     /// VSG rules 7.3's keep for a rectangle with façades: the mass model, its walls with the
-    /// façades in place (figure 6.3), storeys inside, and a gable roof of two ramps (as
-    /// library/keep.vsg) across the shorter side — the plan gives no roof, so this is the
-    /// library's default.
+    /// façades in place (figure 6.3), storeys inside, and the user's roof or a gable of two
+    /// ramps (as library/keep.vsg) across the shorter side — the plan gives no roof, so this is
+    /// the library's default.
     fn hollow_box(
         &mut self,
         s: &Structure,
@@ -383,38 +390,8 @@ impl Writer {
             &mut self.params,
             &mut self.rules,
         );
-        let _ = writeln!(self.rules, "{id}Roof :: {{roof}};");
-        let across_depth = size[1] <= size[0];
-        let (short, long) = if across_depth {
-            (size[1], size[0])
-        } else {
-            (size[0], size[1])
-        };
-        let slope = if across_depth {
-            rotation + std::f64::consts::FRAC_PI_2
-        } else {
-            rotation
-        };
-        let rise = 0.4 * short;
-        let (dx, dz) = (slope.cos() * short / 4.0, slope.sin() * short / 4.0);
-        let _ = writeln!(
-            self.params,
-            "float[] {id}RoofS = {{{}, {}, {}}}; // ramp run, rise, length (default gable roof)",
-            n(short / 2.0),
-            n(rise),
-            n(long)
-        );
-        for (sign, turn) in [(-1.0, 0.0), (1.0, std::f64::consts::PI)] {
-            self.axiom.push((
-                format!(
-                    "T({}, {}, {}) R(0, {}, 0) I(\"ramp\", {{{id}RoofS[0], {id}RoofS[1], {id}RoofS[2]}})",
-                    n(center[0] + sign * dx),
-                    n(h + rise / 2.0),
-                    n(center[1] + sign * dz),
-                    n(-slope + turn)
-                ),
-                format!("{id}Roof"),
-            ));
+        if s.roof.is_none() {
+            self.add(roofs::roof(s, Roof::Gable, u));
         }
     }
 }

@@ -44,10 +44,12 @@ pub(super) fn run(s: &Structure, textures: Option<&str>) -> Part {
             id.clone(),
         ));
     }
-    let body = if s.role == Role::Curtain {
-        "curtain"
-    } else {
-        "innerWall"
+    // The curtain is crenellated and inner walls are not, unless the user said otherwise
+    // (`[[structure]] crenellated`, issue 22).
+    let body = match (s.role == Role::Curtain, s.crenellated) {
+        (_, Some(true)) | (true, None) => "curtain",
+        (true, Some(false)) => "curtainPlain",
+        (false, _) => "innerWall",
     };
     let appearance = textures
         .map(|list| format!("appearance(\"texture\", {list})"))
@@ -68,6 +70,6 @@ pub(super) fn shared(lowest: f64, u: f64) -> Part {
             n((0.2 * u).min(parapet * 0.3))
         ),
         axiom: Vec::new(),
-        rules: "\n// Curtain walls (curtain_wall.vsg as one rule for every piece): the body, then a parapet\n// on the field side (local −z, a fifth of the wall) crenellated once, and the wall walk behind it.\ncurtain :: split(\"Y\", {~1, curtainParapetH}){wallStone, curtainTop};\ncurtainTop :: split(\"Z\", {~1, ~4}){curtainParapet, curtainWalkZone};\ncurtainParapet :: repeat(\"X\", {~curtainMerlon, ~curtainMerlon}){wallStone, curtainCrenel};\ncurtainCrenel :: split(\"Y\", {~4, ~5}){wallStone, opening};\ncurtainWalkZone :: split(\"Y\", {curtainWalkT, ~1}){curtainWalk, opening};\ncurtainWalk :: appearance(\"color\", {0.5, 0.47, 0.42}){j3d.terminal};\ninnerWall :: {wallStone};\n".to_string(),
+        rules: "\n// Curtain walls (curtain_wall.vsg as one rule for every piece): the body, then a parapet\n// on the field side (local −z, a fifth of the wall) crenellated once, and the wall walk behind it.\ncurtain :: split(\"Y\", {~1, curtainParapetH}){wallStone, curtainTop};\ncurtainTop :: split(\"Z\", {~1, ~4}){curtainParapet, curtainWalkZone};\ncurtainParapet :: repeat(\"X\", {~curtainMerlon, ~curtainMerlon}){wallStone, curtainCrenel};\ncurtainCrenel :: split(\"Y\", {~4, ~5}){wallStone, opening};\ncurtainWalkZone :: split(\"Y\", {curtainWalkT, ~1}){curtainWalk, opening};\ncurtainWalk :: appearance(\"color\", {0.5, 0.47, 0.42}){j3d.terminal};\n// A curtain the user wants without crenels: the parapet whole.\ncurtainPlain :: split(\"Y\", {~1, curtainParapetH}){wallStone, curtainPlainTop};\ncurtainPlainTop :: split(\"Z\", {~1, ~4}){wallStone, curtainWalkZone};\ninnerWall :: {wallStone};\n".to_string(),
     }
 }

@@ -153,6 +153,8 @@ fn gatehouses(
                 height: GATE_OVER_CURTAIN * heights.of(Label::CastleOuterWall),
                 wall_thickness: a.wall_thickness.max(b.wall_thickness),
                 facades: Vec::new(),
+                roof: None,
+                crenellated: None,
                 provenance,
             }
         })
@@ -449,6 +451,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             height,
             wall_thickness: room.thickness_px * s,
             facades: Vec::new(),
+            roof: None,
+            crenellated: None,
             provenance,
         });
     }
@@ -508,6 +512,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             height: factor * heights.of(Label::TowerWall),
             wall_thickness: wall_px * s,
             facades: Vec::new(),
+            roof: None,
+            crenellated: None,
             provenance,
         });
     }
@@ -584,6 +590,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             height,
             wall_thickness: thickness,
             facades: Vec::new(),
+            roof: None,
+            crenellated: None,
             provenance,
         });
     }

@@ -1,0 +1,232 @@
+//! A simulated user correcting the development set through the HTTP API (issue 22): on every
+//! plan of `crates/plan/tests/data/devset.json`, each annotated point the parse labels wrongly
+//! is clicked with its true label, towers the parse invented (no annotated tower point in
+//! them) are removed smallest first and annotated tower points outside every tower are added,
+//! until the count is the drawn one; then the model is rebuilt and every annotated tower and
+//! room must have a structure of its kind. Prints the corrections per plan. Skipped, with a
+//! message, when `../shared/data/castle_drawings_pd` is absent.
+
+use std::path::{Path, PathBuf};
+
+use axum::http::StatusCode;
+use plan::eval::{DevPoint, DevSet};
+use plan::label::Label;
+use serde_json::{Value, json as json_value};
+
+use super::tests::{app, json};
+
+fn drawings() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/castle_drawings_pd");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "SKIPPED simulated user: {} is absent (the shared public-domain drawings)",
+            dir.display()
+        );
+        None
+    }
+}
+
+/// What the simulated user did and found on one plan.
+struct Outcome {
+    file: String,
+    corrections: usize,
+    wrong_before: usize,
+    wrong_after: usize,
+    towers: [u64; 3],
+    structures_right: usize,
+    structures_checked: usize,
+}
+
+async fn label_at(app: &axum::Router, p: &DevPoint) -> (Label, Vec<Value>) {
+    let (s, v) = json(app, "GET", &format!("/api/plan/at?x={}&y={}", p.x, p.y), "").await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    let label: Label = serde_json::from_value(v["label"].clone()).unwrap();
+    (label, v["towers"].as_array().unwrap().clone())
+}
+
+fn holds(tower: &Value, p: &DevPoint) -> bool {
+    let c = &tower["center"];
+    let (cx, cy) = (c[0].as_f64().unwrap(), c[1].as_f64().unwrap());
+    (f64::from(p.x) - cx).hypot(f64::from(p.y) - cy) <= tower["radius"].as_f64().unwrap() + 2.0
+}
+
+fn is_tower(l: Label) -> bool {
+    matches!(l, Label::TowerRoom | Label::TowerWall)
+}
+
+async fn correct(plan: &Path, file: &str, truth: &plan::eval::DevPlan) -> Outcome {
+    let dir = tempfile::tempdir().unwrap();
+    let name = Path::new(file).file_name().unwrap().to_str().unwrap();
+    std::fs::copy(plan, dir.path().join(name)).unwrap();
+    std::fs::write(
+        dir.path().join("PROJECT.toml"),
+        format!("plan = \"{name}\"\n"),
+    )
+    .unwrap();
+    let app = app(dir.path(), 1 << 26);
+    let (s, first) = json(&app, "POST", "/api/plan", "").await;
+    assert_eq!(s, StatusCode::OK, "{file}: {first}");
+    let mut fixes = json_value!({"label": [], "tower": []});
+    let mut wrong_before = 0;
+    for p in &truth.points {
+        let (label, _) = label_at(&app, p).await;
+        if label != p.label {
+            wrong_before += 1;
+            fixes["label"]
+                .as_array_mut()
+                .unwrap()
+                .push(json_value!({"point": [p.x, p.y], "label": p.label}));
+        }
+    }
+    let put = |fixes: Value| {
+        let app = app.clone();
+        async move {
+            let (s, v) = json(&app, "PUT", "/api/corrections", &fixes.to_string()).await;
+            assert_eq!(s, StatusCode::OK, "{v}");
+            v
+        }
+    };
+    let mut answer = put(fixes.clone()).await;
+    let target = truth.towers as u64;
+    let before = first["towers"].as_u64().unwrap();
+    let tower_points: Vec<&DevPoint> = truth.points.iter().filter(|p| is_tower(p.label)).collect();
+    // Invented towers out, smallest first; missed ones in, at the annotated tower points.
+    for _ in 0..64 {
+        let count = answer["towers"].as_u64().unwrap();
+        let list = answer["tower_list"].as_array().unwrap().clone();
+        let fix = if count > target {
+            let mut invented: Vec<&Value> = list
+                .iter()
+                .filter(|t| !tower_points.iter().any(|p| holds(t, p)))
+                .collect();
+            invented.sort_by(|a, b| {
+                a["radius"]
+                    .as_f64()
+                    .unwrap()
+                    .total_cmp(&b["radius"].as_f64().unwrap())
+            });
+            invented
+                .first()
+                .map(|t| json_value!({"point": t["center"], "remove": true}))
+        } else if count < target {
+            tower_points
+                .iter()
+                .find(|p| !list.iter().any(|t| holds(t, p)))
+                .map(|p| json_value!({"point": [p.x, p.y]}))
+        } else {
+            None
+        };
+        let Some(fix) = fix else { break };
+        fixes["tower"].as_array_mut().unwrap().push(fix);
+        answer = put(fixes.clone()).await;
+    }
+    let after = answer["towers"].as_u64().unwrap();
+    let mut wrong_after = 0;
+    for p in &truth.points {
+        if label_at(&app, p).await.0 != p.label {
+            wrong_after += 1;
+        }
+    }
+    let (s, r) = json(&app, "POST", "/api/reconstruct", "").await;
+    assert_eq!(s, StatusCode::OK, "{file}: {r}");
+    let (mut right, mut checked) = (0, 0);
+    for p in truth.points.iter().filter(|p| p.label.is_room()) {
+        checked += 1;
+        let (s, st) = json(
+            &app,
+            "GET",
+            &format!("/api/structure?x={}&y={}", p.x, p.y),
+            "",
+        )
+        .await;
+        let role = st["role"].as_str().unwrap_or("");
+        let ok = s == StatusCode::OK
+            && if p.label == Label::TowerRoom {
+                matches!(role, "tower" | "keep")
+            } else {
+                st["label"] == json_value!(p.label) && matches!(role, "range" | "room" | "keep")
+            };
+        if ok {
+            right += 1;
+        } else {
+            eprintln!(
+                "{file}: at [{}, {}] ({}) the model has {st}",
+                p.x,
+                p.y,
+                p.label.name()
+            );
+        }
+    }
+    let corrections =
+        fixes["label"].as_array().unwrap().len() + fixes["tower"].as_array().unwrap().len();
+    Outcome {
+        file: file.to_string(),
+        corrections,
+        wrong_before,
+        wrong_after,
+        towers: [before, after, target],
+        structures_right: right,
+        structures_checked: checked,
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_simulated_user_corrects_every_development_plan() {
+    let Some(data) = drawings() else { return };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../plan/tests/data/devset.json");
+    let set = DevSet::from_json(&std::fs::read_to_string(root).unwrap()).unwrap();
+    let mut outcomes = Vec::new();
+    for p in &set.plans {
+        outcomes.push(correct(&data.join(&p.file), &p.file, p).await);
+    }
+    eprintln!(
+        "plan | corrections | points wrong before → after | towers parsed → corrected (drawn) | rooms and towers built right"
+    );
+    for o in &outcomes {
+        eprintln!(
+            "{} | {} | {} → {} | {} → {} ({}) | {}/{}",
+            o.file,
+            o.corrections,
+            o.wrong_before,
+            o.wrong_after,
+            o.towers[0],
+            o.towers[1],
+            o.towers[2],
+            o.structures_right,
+            o.structures_checked
+        );
+    }
+    let mut counts: Vec<usize> = outcomes.iter().map(|o| o.corrections).collect();
+    counts.sort_unstable();
+    let median = counts[counts.len() / 2];
+    let worst = counts[counts.len() - 1];
+    let points: usize = set.plans.iter().map(|p| p.points.len()).sum();
+    let wrong_before: usize = outcomes.iter().map(|o| o.wrong_before).sum();
+    let wrong_after: usize = outcomes.iter().map(|o| o.wrong_after).sum();
+    let exact = outcomes
+        .iter()
+        .filter(|o| o.towers[1] == o.towers[2])
+        .count();
+    let exact_before = outcomes
+        .iter()
+        .filter(|o| o.towers[0] == o.towers[2])
+        .count();
+    let right: usize = outcomes.iter().map(|o| o.structures_right).sum();
+    let checked: usize = outcomes.iter().map(|o| o.structures_checked).sum();
+    eprintln!(
+        "simulated user, {} plans: corrections per plan median {median}, worst {worst}; points wrong {wrong_before} → {wrong_after} of {points}; exact tower counts {exact_before} → {exact}; rooms and towers built right {right}/{checked}",
+        outcomes.len()
+    );
+    // Floors at the figures measured (docs/serve.md, "Corrections").
+    assert!(
+        wrong_after * 20 <= points,
+        "{wrong_after} of {points} points still wrong"
+    );
+    assert!(
+        exact * 10 >= outcomes.len() * 9,
+        "{exact} exact tower counts"
+    );
+    assert!(right * 10 >= checked * 9, "{right}/{checked} built right");
+}
