@@ -54,7 +54,13 @@ try {
   const count = async () => Number(await page.getAttribute('#fix-info', 'data-count'));
   const towers = async () => Number(await page.getAttribute('#fix-info', 'data-towers'));
   // Waits for the answer of a correction: the count of corrections becomes n.
-  const saved = (n) => page.waitForSelector(`#fix-info[data-count="${n}"]`);
+  const saved = async (n) => {
+    try {
+      await page.waitForSelector(`#fix-info[data-count="${n}"]`, { timeout: 30_000 });
+    } catch (e) {
+      throw new Error(`no correction saved (${n} expected); the page says: ${await page.textContent('#status')}`);
+    }
+  };
   const roundTrips = [];
   const roundTrip = async () => roundTrips.push(Number(await page.getAttribute('#fix-info', 'data-round-trip-ms')));
 
@@ -140,7 +146,7 @@ try {
   const faces = (await apiGet('/api/corrections'), await page.textContent('#fix-info'));
   await page.check('input[name=fix][value=merge]');
   await click(KEEP);
-  await click([320, 420]);
+  await click(WARD);
   await saved(3);
   const merged = await page.textContent('#fix-info');
   check(faces !== merged, `the regions changed: ${faces} → ${merged}`);
