@@ -42,6 +42,10 @@ async fn a_relabel_is_saved_by_point_and_redraws_the_overlay() {
     assert!(text.contains("label = \"chapel\""), "{text}");
     // The comments of the user's file stay.
     assert!(text.contains("# metres per plan pixel"), "{text}");
+    let (s, at) = json(&app, "GET", "/api/plan/at?x=320&y=380", "").await;
+    assert_eq!(s, StatusCode::OK, "{at}");
+    assert_eq!(at["label"], "chapel");
+    assert_eq!(at["towers"].as_array().unwrap().len(), 2);
     let (_, got) = json(&app, "GET", "/api/corrections", "").await;
     assert_eq!(got["label"][0]["label"], "chapel");
     assert_eq!(got["labels"].as_array().unwrap().len(), 11);
