@@ -21,6 +21,9 @@ pub enum FacadeError {
     /// Training boxes (TRAINING.json) are unusable (§3.1.2).
     #[error("bad training data: {0}")]
     BadTraining(String),
+    /// The user's corrections of the façade estimate cannot be used (issue 22).
+    #[error("bad façade corrections: {0}")]
+    BadFixes(crate::fixes::FixError),
     /// A numerical step failed (a singular matrix, a degenerate homography).
     #[error("numerical failure: {0}")]
     Numerical(String),
