@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::error::FixError;
 use crate::model::{Facade, MAX_COLUMNS, MAX_FLOORS};
 
 /// Most windows a user adds or removes by hand on one photo.
@@ -70,60 +71,6 @@ impl Correction {
     }
 }
 
-/// Why a [`FacadeFixes`] cannot be used on an image; the message names the value at fault.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FixError {
-    #[error("floor line {0} is not a number")]
-    FloorLineNotFinite(f64),
-    #[error("floor line {y} is above the façade (rectified image top is 0)")]
-    FloorLineAbove { y: f64 },
-    #[error("floor line {y} is below the façade (rectified height {height})")]
-    FloorLineBelow { y: f64, height: u32 },
-    #[error("floor lines must go from top to bottom, each below the last: {0} after {1}")]
-    FloorLinesUnsorted(f64, f64),
-    #[error("{0} floor lines make more than {max} floors", max = MAX_FLOORS)]
-    TooManyFloorLines(usize),
-    #[error(
-        "column {index} [{left}, {right}] must have left < right, both inside 0..{width} (the rectified width)"
-    )]
-    BadColumn {
-        index: usize,
-        left: f64,
-        right: f64,
-        width: u32,
-    },
-    #[error("columns must go left to right without overlapping: column {0} starts before column {prev} ends", prev = .0 - 1)]
-    ColumnsOverlap(usize),
-    #[error("{0} columns: at most {max}", max = MAX_COLUMNS)]
-    TooManyColumns(usize),
-    #[error(
-        "add_windows #{index} {b:?} must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0, inside the {width}x{height} rectified image"
-    )]
-    BadWindow {
-        index: usize,
-        b: [f64; 4],
-        width: u32,
-        height: u32,
-    },
-    #[error(
-        "remove_windows #{index} {p:?} is not a point inside the {width}x{height} rectified image"
-    )]
-    BadPoint {
-        index: usize,
-        p: [f64; 2],
-        width: u32,
-        height: u32,
-    },
-    #[error("{0} windows added or removed: at most {max} each", max = MAX_EDITED_WINDOWS)]
-    TooManyWindows(usize),
-    #[error("blind floor {0}: floors are counted from 1 (the ground floor) to {max}", max = MAX_FLOORS)]
-    BlindFloorOutOfRange(u32),
-    #[error("blind floor {floor}: the floor lines make only {floors} floors")]
-    BlindFloorAboveTop { floor: u32, floors: usize },
-    #[error("blind floor {0} is listed twice")]
-    BlindFloorTwice(u32),
-}
-
 impl FacadeFixes {
     /// Nothing corrected.
     pub fn is_empty(&self) -> bool {
@@ -157,7 +104,7 @@ impl FacadeFixes {
         let (w, h) = (f64::from(width), f64::from(height));
         if let Some(lines) = &self.floor_lines {
             if lines.len() >= MAX_FLOORS as usize {
-                return Err(FixError::TooManyFloorLines(lines.len()));
+                return Err(FixError::TooManyFloorLines(lines.len(), MAX_FLOORS));
             }
             for (i, &y) in lines.iter().enumerate() {
                 if !y.is_finite() {
@@ -176,7 +123,7 @@ impl FacadeFixes {
         }
         if let Some(cols) = &self.columns {
             if cols.len() > MAX_COLUMNS as usize {
-                return Err(FixError::TooManyColumns(cols.len()));
+                return Err(FixError::TooManyColumns(cols.len(), MAX_COLUMNS));
             }
             for (i, &[left, right]) in cols.iter().enumerate() {
                 let ok = left.is_finite() && right.is_finite() && 0.0 <= left && right <= w;
@@ -195,7 +142,7 @@ impl FacadeFixes {
         }
         let edited = self.add_windows.len().max(self.remove_windows.len());
         if edited > MAX_EDITED_WINDOWS {
-            return Err(FixError::TooManyWindows(edited));
+            return Err(FixError::TooManyWindows(edited, MAX_EDITED_WINDOWS));
         }
         for (i, b) in self.add_windows.iter().enumerate() {
             let inside = b.iter().all(|v| v.is_finite())
@@ -227,7 +174,7 @@ impl FacadeFixes {
         }
         for (i, &floor) in self.blind_floors.iter().enumerate() {
             if floor == 0 || floor > MAX_FLOORS {
-                return Err(FixError::BlindFloorOutOfRange(floor));
+                return Err(FixError::BlindFloorOutOfRange(floor, MAX_FLOORS));
             }
             if let Some(lines) = &self.floor_lines
                 && floor as usize > lines.len() + 1
