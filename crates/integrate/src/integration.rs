@@ -226,7 +226,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
                 width: widths[k],
                 height: mean_height,
                 floors: if corrected(m) {
-                    floors_of_tree(&est.model.facades[m.facade], s * sy)
+                    floors_of_tree(&est.model.facades[m.facade], s * sy, s)
                 } else {
                     floors_of(p, s * sy)
                 },
@@ -452,16 +452,18 @@ fn floors_of(p: &FacadeParams, k: f64) -> Vec<FloorEstimate> {
                 windows: if has { p.n_w } else { 0 },
                 window_height: if has { wh * k } else { 0.0 },
                 window_sill: if has { wg * k } else { 0.0 },
+                openings: None,
             }
         })
         .collect()
 }
 
-/// Floors bottom-up in model units (`k` model units per façade pixel vertically) read from the
-/// façade tree, for a façade the user corrected (issue 22): the 18 parameters hold equal
-/// middle floors with one window count, not the user's floor lines, blind floors and single
-/// windows. Each floor's window height and sill are its windows' means.
-fn floors_of_tree(f: &Facade, k: f64) -> Vec<FloorEstimate> {
+/// Floors bottom-up in model units (`k` model units per façade pixel vertically, `s`
+/// horizontally) read from the façade tree, for a façade the user corrected (issue 22): the 18
+/// parameters hold equal middle floors with one window grid, not the user's floor lines, blind
+/// floors and single windows. Each floor's window height and sill are its windows' means; its
+/// windows keep their own places (`openings`).
+fn floors_of_tree(f: &Facade, k: f64, s: f64) -> Vec<FloorEstimate> {
     f.floors
         .iter()
         .rev()
@@ -479,9 +481,22 @@ fn floors_of_tree(f: &Facade, k: f64) -> Vec<FloorEstimate> {
                 windows: n as u32,
                 window_height: mean(&|w| w[3] - w[1]) * k,
                 window_sill: mean(&|w| (fl.y1 - w[3]).max(0.0)) * k,
+                openings: Some(openings(fl, f.bbox[0], s)),
             }
         })
         .collect()
+}
+
+/// A floor's windows as [start, width] from the façade's left edge `x0`, scaled by `s`, left to
+/// right.
+fn openings(fl: &facade::model::Floor, x0: f64, s: f64) -> Vec<[f64; 2]> {
+    let mut out: Vec<[f64; 2]> = fl
+        .windows
+        .iter()
+        .map(|w| [(w[0] - x0) * s, (w[2] - w[0]) * s])
+        .collect();
+    out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    out
 }
 
 /// §6.1.3 / figure 6.3: the wall a façade is mapped to is replaced by the façade's hierarchy.

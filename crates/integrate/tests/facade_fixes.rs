@@ -170,6 +170,23 @@ fn reconstruct_honours_every_kind_of_facade_correction() {
         .find(|l| l.starts_with(&ground))
         .unwrap_or_else(|| panic!("no ground floor rule in\n{}", r.program));
     assert!(!ground_rule.contains("Row"), "{ground_rule}");
+    // The top floor, a window removed, has its own row of the windows left.
+    let fid = format!("{}Facade{}", keep.id, k_near + 1);
+    let top = near.floors.len();
+    let row = format!("{fid}Row{top} ::");
+    let top_row = r
+        .program
+        .lines()
+        .find(|l| l.starts_with(&row))
+        .unwrap_or_else(|| panic!("no {row} in\n{}", r.program));
+    let openings = top_row.matches(&format!("{fid}Window")).count();
+    assert_eq!(openings, want[top - 1] as usize, "{top_row}");
+    assert!(
+        r.program
+            .contains(&format!("{fid}Floor{top} :: split(\"Y\""))
+            && r.program.contains(&format!(", {fid}Row{top}, ")),
+        "the top floor uses its own row"
+    );
 }
 
 #[test]
