@@ -1,9 +1,11 @@
 //! `castellan facade`: a rectified façade image and TRAINING.json → FACADE.json (façades, floors,
-//! windows, the 18 parameters of §3.1.6), LABELS.png and an overlay.
+//! windows, the 18 parameters of §3.1.6), LABELS.png and an overlay; `--fix` applies the user's
+//! corrections (issue 22, the keys of PROJECT.toml's `[facade.fix]`).
 
 use anyhow::{Result, anyhow};
 use clap::Args;
 use facade::classify::{ClassifyParams, Method, Training};
+use facade::fixes::FacadeFixes;
 use facade::repeat::RepeatParams;
 use facade::search::SearchParams;
 use image::GrayImage;
@@ -21,16 +23,27 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
     training
         .boxes(img.width() as usize, img.height() as usize)
         .map_err(|e| anyhow!("{tfile}: {e}"))?;
+    let fixes: FacadeFixes = match &args.fix {
+        Some(path) => {
+            let fixes: FacadeFixes = crate::text::read_json(path, "a façade corrections file")?;
+            fixes
+                .validate(img.width(), img.height())
+                .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+            fixes
+        }
+        None => FacadeFixes::default(),
+    };
     let params = ClassifyParams::with(args.classifier, args.seed);
     let (ll, model, repeats) = crate::progress::with_spinner(
         "pixel classes (§3.1.2–3.1.4), repeated windows, façades, floors and windows (§3.1.5–3.1.7)",
         |_| {
-            facade::parse_photo(
+            facade::parse_photo_with(
                 &img,
                 &training,
                 &params,
                 &SearchParams::default(),
                 &RepeatParams::default(),
+                &fixes,
             )
         },
     )
@@ -102,6 +115,12 @@ pub struct FacadeArgs {
     /// Seed of the sampling of training pixels (and PCA pixels and EM for gmm, trees for forest).
     #[arg(long, default_value_t = 7)]
     pub seed: u64,
+    /// Your corrections, in the image's pixels (the keys of PROJECT.toml's `[facade.fix]` as
+    /// JSON): {"floor_lines": [y, …], "columns": [[left, right], …], "add_windows":
+    /// [[x0, y0, x1, y1], …], "remove_windows": [[x, y], …], "blind_floors": [1, …]}; the search
+    /// keeps the lines and columns given and finds the rest.
+    #[arg(long, value_name = "FIX.json")]
+    pub fix: Option<PathBuf>,
 }
 
 #[cfg(test)]
@@ -146,6 +165,13 @@ mod flag_tests {
     }
 
     #[test]
+    fn facade_fix_flag() {
+        assert_eq!(facade_args(&[]).unwrap().fix, None);
+        let a = facade_args(&["--fix", "fix.json"]).unwrap();
+        assert_eq!(a.fix, Some(PathBuf::from("fix.json")));
+    }
+
+    #[test]
     fn facade_probabilities_and_classifier_flags() {
         let a = facade_args(&[]).unwrap();
         assert_eq!((a.classifier, a.probabilities), (Method::Forest, None));
@@ -169,10 +195,20 @@ mod bad_input_tests {
     /// Runs the command on `img` with TRAINING.json text `training`; returns the error text and
     /// whether FACADE.json was written.
     fn fails_with(img: &RgbImage, training: &str) -> (String, bool) {
+        fails_with_fix(img, training, None)
+    }
+
+    /// [`fails_with`] with a corrections file's text.
+    fn fails_with_fix(img: &RgbImage, training: &str, fix: Option<&str>) -> (String, bool) {
         let dir = tempfile::tempdir().unwrap();
         let (image, tfile) = (dir.path().join("f.png"), dir.path().join("t.json"));
         img.save(&image).unwrap();
         std::fs::write(&tfile, training).unwrap();
+        let fix = fix.map(|text| {
+            let path = dir.path().join("fix.json");
+            std::fs::write(&path, text).unwrap();
+            path
+        });
         let output = dir.path().join("f.json");
         let args = FacadeArgs {
             image,
@@ -183,6 +219,7 @@ mod bad_input_tests {
             probabilities: Some(dir.path().join("p.png")),
             classifier: Method::Forest,
             seed: 7,
+            fix,
         };
         let err = run(&args).expect_err("bad input must fail");
         (
@@ -265,6 +302,22 @@ mod bad_input_tests {
             err.contains("t.json") && err.contains("not a TRAINING.json"),
             "{err}"
         );
+        assert!(!wrote);
+    }
+
+    #[test]
+    fn bad_corrections_are_refused_naming_the_file() {
+        let training = r#"{"classes": {"window": [[40, 10, 50, 30]], "wall": [[2, 2, 20, 20]]}}"#;
+        let (err, wrote) =
+            fails_with_fix(&two_tone(), training, Some(r#"{"floor_lines": [10, 90]}"#));
+        assert!(
+            err.contains("fix.json")
+                && err.contains("floor line 90 is below the façade (rectified height 40)"),
+            "{err}"
+        );
+        assert!(!wrote);
+        let (err, wrote) = fails_with_fix(&two_tone(), training, Some(r#"{"floors": [10]}"#));
+        assert!(err.contains("fix.json") && err.contains("floors"), "{err}");
         assert!(!wrote);
     }
 }

@@ -143,3 +143,52 @@ fn facade_rejects_boxes_outside_the_image() {
     );
     assert!(!out.exists());
 }
+
+/// Issue 22: `--fix` (the keys of `[facade.fix]`): a window removed is wall in the labels and
+/// gone from FACADE.json.
+#[test]
+fn facade_honours_the_users_corrections() {
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("f.png");
+    fixtures::facade_image().save(&img_path).unwrap();
+    let training = dir.path().join("t.json");
+    std::fs::write(
+        &training,
+        r#"{"classes": {"window": [[14, 27, 30, 43], [52, 62, 68, 78]], "wall": [[2, 50, 10, 58], [40, 17, 100, 23]], "background": [[5, 2, 115, 12]]}}"#,
+    )
+    .unwrap();
+    let windows = |fix: Option<&str>| {
+        let (out, labels) = (dir.path().join("f.json"), dir.path().join("l.png"));
+        let mut cmd = castellan();
+        cmd.arg("facade")
+            .arg(&img_path)
+            .arg("--training")
+            .arg(&training)
+            .arg("-o")
+            .arg(&out)
+            .arg("--labels")
+            .arg(&labels);
+        if let Some(text) = fix {
+            let path = dir.path().join("fix.json");
+            std::fs::write(&path, text).unwrap();
+            cmd.arg("--fix").arg(&path);
+        }
+        cmd.assert().success();
+        let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        let n: usize = m["facades"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|f| f["floors"].as_array().unwrap())
+            .map(|fl| fl["windows"].as_array().unwrap().len())
+            .sum();
+        (
+            n,
+            image::open(&labels).unwrap().to_luma8().get_pixel(20, 35)[0],
+        )
+    };
+    let (found, label) = windows(None);
+    assert_eq!(label, 2, "a window at (20, 35)");
+    let (fixed, label) = windows(Some(r#"{"remove_windows": [[20, 35]]}"#));
+    assert_eq!((fixed, label), (found - 1, 1));
+}

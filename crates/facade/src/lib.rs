@@ -14,6 +14,9 @@
 //!   [`model::FacadeModel`] (FACADE.json) and its label image.
 //! - [`search`] (§3.1.7): [`search::parse`] finds façade boundaries, floors and windows
 //!   maximising the merit function.
+//! - [`fixes`] (issue 22): the user's corrections — floor lines and column edges the search
+//!   keeps, windows added or removed, floors without windows — honoured by
+//!   [`search::parse_with`].
 //! - [`repeat`]: windows proposed as repeats of one whole window the user drew (normalised
 //!   cross-correlation, non-maximum suppression, grid columns and rows).
 //! - [`parse_photo`] ([`pipeline`]): classify → repeats → search in one call, the steps the
@@ -53,6 +56,7 @@ pub mod classify;
 pub mod draw;
 pub mod error;
 pub mod eval;
+pub mod fixes;
 pub mod gothic;
 pub mod model;
 pub mod pipeline;
@@ -61,4 +65,4 @@ pub mod repeat;
 pub mod search;
 
 pub use error::{FacadeError, Result};
-pub use pipeline::{classify_with_repeats, parse_photo};
+pub use pipeline::{classify_with_repeats, parse_photo, parse_photo_with};

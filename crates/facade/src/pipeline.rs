@@ -6,9 +6,10 @@ use image::RgbImage;
 
 use crate::classify::{ClassifyParams, LogLikelihoods, Training, classify};
 use crate::error::Result;
+use crate::fixes::FacadeFixes;
 use crate::model::FacadeModel;
 use crate::repeat::{RepeatParams, Repeats, evidence, find_repeats};
-use crate::search::{SearchParams, parse};
+use crate::search::{SearchParams, parse_with};
 
 /// Classifies `img` from `training`, and, when `rp.evidence > 0` and the user outlined whole
 /// windows ([`Training::whole_windows`]), finds the windows' repeats ([`find_repeats`]) and adds them to the window evidence ([`evidence`]); then
@@ -21,8 +22,24 @@ pub fn parse_photo(
     sp: &SearchParams,
     rp: &RepeatParams,
 ) -> Result<(LogLikelihoods, FacadeModel, Option<Repeats>)> {
+    parse_photo_with(img, training, cp, sp, rp, &FacadeFixes::default())
+}
+
+/// [`parse_photo`] under the user's corrections of the façade (issue 22), honoured by the
+/// search ([`parse_with`]); they are checked against the image before anything runs.
+pub fn parse_photo_with(
+    img: &RgbImage,
+    training: &Training,
+    cp: &ClassifyParams,
+    sp: &SearchParams,
+    rp: &RepeatParams,
+    fixes: &FacadeFixes,
+) -> Result<(LogLikelihoods, FacadeModel, Option<Repeats>)> {
+    fixes
+        .validate(img.width(), img.height())
+        .map_err(crate::error::FacadeError::BadFixes)?;
     let (ll, repeats) = classify_with_repeats(img, training, cp, rp)?;
-    let model = parse(img, &ll, sp)?;
+    let model = parse_with(img, &ll, sp, fixes)?;
     Ok((ll, model, repeats))
 }
 

@@ -269,6 +269,11 @@ pub struct FloorEstimate {
     /// Window height and its distance above the floor's bottom (0 when no windows).
     pub window_height: f64,
     pub window_sill: f64,
+    /// The floor's own windows, [start, width] in model units from the façade's left edge,
+    /// when they are not the façade's shared columns (`windows`): the floors of a façade the
+    /// user corrected (issue 22), each window where its tree has it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub openings: Option<Vec<[f64; 2]>>,
 }
 
 /// The window columns shared by every floor, model units from the façade's left edge.

@@ -5,7 +5,7 @@
 //! every parameter.
 
 use facade::classify::Class;
-use facade::model::FacadeParams;
+use facade::model::{Facade, FacadeParams};
 use facade::search::joint::{JointFacade, fit_floors_joint};
 use facade::search::{Gradients, Integral, SearchParams};
 use plan::ParsedPlan;
@@ -185,7 +185,11 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
             .map(|(p, s)| (p.y_fb - p.y_ft) * s)
             .collect();
         let mean_height = heights.iter().sum::<f64>() / heights.len() as f64;
-        let joint = maps.len() > 1;
+        let several = maps.len() > 1;
+        // The user's corrections are not re-estimated away (issue 22): a structure one of
+        // whose façades the user corrected keeps each façade's own search.
+        let corrected = |m: &Mapping| !inputs.facades[m.photo].fixes.is_empty();
+        let joint = several && !maps.iter().any(corrected);
         let names: Vec<&str> = maps
             .iter()
             .map(|m| inputs.facades[m.photo].name.as_str())
@@ -195,7 +199,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
             "height".into(),
             Provenance::new(
                 &names.join(", "),
-                if joint {
+                if several {
                     format!(
                         "§6.1.2 mean of {} façade heights, each scaled by {}",
                         maps.len(),
@@ -227,7 +231,11 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
                 height_factor: sy,
                 width: widths[k],
                 height: mean_height,
-                floors: floors_of(p, s * sy),
+                floors: if corrected(m) {
+                    floors_of_tree(&est.model.facades[m.facade], s * sy, s)
+                } else {
+                    floors_of(p, s * sy)
+                },
                 windows: WindowColumns {
                     count: p.n_w,
                     offset: p.w_off * s,
@@ -259,6 +267,13 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
                     None,
                 ),
             );
+            // Inputs.facades are in PROJECT.toml's order: photo k is the entry #k + 1.
+            for c in est.fixes.corrections() {
+                structure.provenance.insert(
+                    format!("facade.{}.{side}.{}", est.name, c.parameter()),
+                    Provenance::user(format!("[[facade]] #{} fix.{}", m.photo + 1, c.key())),
+                );
+            }
             structure.facades.push(mapped);
         }
     }
@@ -383,13 +398,14 @@ fn gothic_programs(estimate: &Estimate, gothics: &[GothicFacadeEstimate]) -> Vec
     out
 }
 
-/// The façades' parameters; several on one structure are re-estimated jointly (§6.1.2).
+/// The façades' parameters; several on one structure are re-estimated jointly (§6.1.2), unless
+/// the user corrected one of them.
 fn facade_params(photos: &[FacadeEstimate], maps: &[Mapping]) -> Vec<FacadeParams> {
     let single: Vec<FacadeParams> = maps
         .iter()
         .map(|m| photos[m.photo].model.facades[m.facade].params)
         .collect();
-    if maps.len() < 2 {
+    if maps.len() < 2 || maps.iter().any(|m| !photos[m.photo].fixes.is_empty()) {
         return single;
     }
     let prepared: Option<Vec<(Integral, Gradients, [usize; 4])>> = maps
@@ -444,9 +460,51 @@ fn floors_of(p: &FacadeParams, k: f64) -> Vec<FloorEstimate> {
                 windows: if has { p.n_w } else { 0 },
                 window_height: if has { wh * k } else { 0.0 },
                 window_sill: if has { wg * k } else { 0.0 },
+                openings: None,
             }
         })
         .collect()
+}
+
+/// Floors bottom-up in model units (`k` model units per façade pixel vertically, `s`
+/// horizontally) read from the façade tree, for a façade the user corrected (issue 22): the 18
+/// parameters hold equal middle floors with one window grid, not the user's floor lines, blind
+/// floors and single windows. Each floor's window height and sill are its windows' means; its
+/// windows keep their own places (`openings`).
+fn floors_of_tree(f: &Facade, k: f64, s: f64) -> Vec<FloorEstimate> {
+    f.floors
+        .iter()
+        .rev()
+        .map(|fl| {
+            let n = fl.windows.len();
+            let mean = |of: &dyn Fn(&[f64; 4]) -> f64| {
+                if n == 0 {
+                    0.0
+                } else {
+                    fl.windows.iter().map(of).sum::<f64>() / n as f64
+                }
+            };
+            FloorEstimate {
+                height: (fl.y1 - fl.y0) * k,
+                windows: n as u32,
+                window_height: mean(&|w| w[3] - w[1]) * k,
+                window_sill: mean(&|w| (fl.y1 - w[3]).max(0.0)) * k,
+                openings: Some(openings(fl, f.bbox[0], s)),
+            }
+        })
+        .collect()
+}
+
+/// A floor's windows as [start, width] from the façade's left edge `x0`, scaled by `s`, left to
+/// right.
+fn openings(fl: &facade::model::Floor, x0: f64, s: f64) -> Vec<[f64; 2]> {
+    let mut out: Vec<[f64; 2]> = fl
+        .windows
+        .iter()
+        .map(|w| [(w[0] - x0) * s, (w[2] - w[0]) * s])
+        .collect();
+    out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    out
 }
 
 /// §6.1.3 / figure 6.3: the wall a façade is mapped to is replaced by the façade's hierarchy.

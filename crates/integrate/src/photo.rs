@@ -4,6 +4,7 @@
 //! the rectifying homography, so a project stays valid if rectification is re-run.
 
 use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training};
+use facade::fixes::FacadeFixes;
 use facade::model::FacadeModel;
 use facade::rectify::{ManualLines, Rectification, RectifyParams, rectify, rectify_with_lines};
 use facade::repeat::RepeatParams;
@@ -31,6 +32,9 @@ pub struct FacadePhoto<'a> {
     pub seed: u64,
     /// The per-pixel classifier of §3.1.3–3.1.4 (the text's GMM or the forest).
     pub classifier: Method,
+    /// The user's corrections of the façade estimate (issue 22), in rectified pixels (of the
+    /// cut-out when `bbox` is given).
+    pub fixes: &'a FacadeFixes,
 }
 
 /// The chapter 3 estimate of one photo.
@@ -45,6 +49,9 @@ pub struct FacadeEstimate {
     pub model: FacadeModel,
     /// Metres per rectified pixel, when the user measured it on the drawing.
     pub metres_per_pixel: Option<f64>,
+    /// The user's corrections the search honoured (issue 22): integration reads the model's
+    /// floors and windows whole where they are set, and names the user as their source.
+    pub fixes: FacadeFixes,
 }
 
 impl FacadeEstimate {
@@ -122,15 +129,27 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
             (shift * homography, cut)
         }
     };
+    // The corrections are in the frame the user saw them in, the rectified photo (cut out):
+    // checked there before the classifier runs.
+    let (rw, rh) = rectified.dimensions();
+    photo
+        .fixes
+        .validate(rw, rh)
+        .map_err(|e| IntegrateError::Facade {
+            image: photo.name.to_string(),
+            step: "fix".into(),
+            message: e.to_string(),
+        })?;
     let params = ClassifyParams::with(photo.classifier, photo.seed);
     // Classes, the drawn windows' repeats (when the window boxes are whole windows) and the
     // search, as `castellan facade` runs them.
-    let (log_likelihoods, model, _) = facade::parse_photo(
+    let (log_likelihoods, model, _) = facade::parse_photo_with(
         &rectified,
         &training,
         &params,
         &SearchParams::default(),
         &RepeatParams::default(),
+        photo.fixes,
     )
     .map_err(|e| err("pixel classes and façade search (§3.1.2–3.1.7)", e))?;
     Ok(FacadeEstimate {
@@ -142,6 +161,7 @@ pub fn estimate_facade(photo: &FacadePhoto) -> Result<FacadeEstimate, IntegrateE
         log_likelihoods,
         model,
         metres_per_pixel: photo.metres_per_pixel,
+        fixes: photo.fixes.clone(),
     })
 }
 

@@ -240,6 +240,7 @@ pub fn estimate_photo(
         metres_per_pixel: f.metres_per_pixel,
         seed,
         classifier: options.classifier,
+        fixes: &f.fix,
     })
     .map_err(|e| at(entry)(e.to_string()))?;
     let overlays = facade_overlays(&estimate, &image);

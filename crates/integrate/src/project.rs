@@ -3,6 +3,7 @@
 //! shapes. Parsing is pure (text in, typed project out); errors name the entry at fault.
 
 use facade::classify::Training;
+use facade::fixes::FacadeFixes;
 use plan::scale::GivenScale;
 use serde::{Deserialize, Serialize};
 
@@ -94,6 +95,12 @@ pub struct FacadeEntry {
     /// `scale`.
     #[serde(default, rename = "scale", skip_serializing_if = "Option::is_none")]
     pub metres_per_pixel: Option<f64>,
+    /// The user's corrections of the façade estimate (issue 22), the `[facade.fix]` table: floor
+    /// lines, window columns, windows added and removed, floors without windows, in pixels of
+    /// the rectified photo (of its part inside `bbox` when given); checked against its size
+    /// when the photo is estimated.
+    #[serde(default, skip_serializing_if = "FacadeFixes::is_empty")]
+    pub fix: FacadeFixes,
 }
 
 fn is_box(b: &[f64; 4]) -> bool {
@@ -512,5 +519,30 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("[[facade]] #2") && e.contains("scale"), "{e}");
+    }
+
+    /// Issue 22: the user's façade corrections, a `[facade.fix]` table under its entry.
+    #[test]
+    fn facade_fixes_parse_and_round_trip() {
+        let fixed = GOOD.replace(
+            "rectified = true\n",
+            "rectified = true\n\n[facade.fix]\nfloor_lines = [120, 240.5]\ncolumns = [[10, 40], [60, 90]]\nadd_windows = [[5, 5, 15, 20]]\nremove_windows = [[70, 130]]\nblind_floors = [1]\n",
+        );
+        let p = Project::from_toml(&fixed).unwrap();
+        let fix = &p.facades[1].fix;
+        assert_eq!(fix.floor_lines, Some(vec![120.0, 240.5]));
+        assert_eq!(fix.columns, Some(vec![[10.0, 40.0], [60.0, 90.0]]));
+        assert_eq!(fix.add_windows, vec![[5.0, 5.0, 15.0, 20.0]]);
+        assert_eq!(fix.remove_windows, vec![[70.0, 130.0]]);
+        assert_eq!(fix.blind_floors, vec![1]);
+        assert!(p.facades[0].fix.is_empty());
+        let text = p.to_toml();
+        assert!(text.contains("[facade.fix]"), "{text}");
+        assert!(!text.contains("remove_windows = []"), "{text}");
+        assert_eq!(Project::from_toml(&text).unwrap(), p, "round trip");
+        let e = Project::from_toml(&fixed.replace("blind_floors", "blind_floor"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("blind_floor"), "{e}");
     }
 }

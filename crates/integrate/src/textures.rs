@@ -441,6 +441,7 @@ mod tests {
                 merit: 0.0,
             },
             metres_per_pixel: Some(0.05),
+            fixes: Default::default(),
         }
     }
 

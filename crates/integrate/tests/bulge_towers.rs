@@ -259,6 +259,7 @@ fn a_facade_mapped_onto_a_bulge_tower_sets_its_height() {
         metres_per_pixel: None,
         seed: 7,
         classifier: Default::default(),
+        fixes: &Default::default(),
     })
     .unwrap();
     let b = plan.bulge_towers[1];

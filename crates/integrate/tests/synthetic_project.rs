@@ -53,6 +53,7 @@ fn keep_and_towers_match_facades_and_plan() {
                 metres_per_pixel: None,
                 seed: 7,
                 classifier: Default::default(),
+                fixes: &Default::default(),
             })
             .unwrap()
         })
@@ -190,6 +191,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
         metres_per_pixel: None,
         seed: 7,
         classifier: Default::default(),
+        fixes: &Default::default(),
     })
     .unwrap();
     // The west tower at (110, 100), radius 36 px: from its south point counter-clockwise to

@@ -12,6 +12,9 @@ mod corrections;
 mod corrections_tests;
 #[cfg(test)]
 mod edit_tests;
+mod facade_fix;
+#[cfg(test)]
+mod facade_fix_tests;
 #[cfg(test)]
 mod fuzz_tests;
 mod guard;
@@ -160,6 +163,11 @@ pub fn router(app: Arc<app::App>) -> Router {
         )
         .route("/api/facades/{name}/facade", post(stages::facade_stage))
         .route("/api/facades/{name}/preview", post(preview::preview))
+        .route(
+            "/api/facades/{name}/fixes",
+            put(facade_fix::save).delete(facade_fix::remove),
+        )
+        .route("/api/facades/{name}/tree", post(facade_fix::tree))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(project::file))

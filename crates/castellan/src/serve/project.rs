@@ -171,6 +171,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                         rectified: false,
                         bbox: None,
                         metres_per_pixel: None,
+                        fix: Default::default(),
                     });
                 }
             }

@@ -455,6 +455,7 @@ mod tests {
             rectified: false,
             bbox: None,
             metres_per_pixel: None,
+            fix: Default::default(),
         });
         store.commit(Some(&p), vec![]).unwrap();
         assert_eq!(store.load().unwrap().unwrap().facades.len(), 1);

@@ -6,6 +6,7 @@
 //! one (a wrong label, side, unit or unknown key), so it has teeth. Each command runs once,
 //! shared by the tests that read its outputs.
 
+mod facade_fix;
 #[path = "../fixtures/mod.rs"]
 mod fixtures;
 mod outputs;

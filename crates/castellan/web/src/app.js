@@ -4,6 +4,7 @@
 // shown in the model viewer. Every change is saved by the server.
 import { showModel } from './viewer.js';
 import { initPlanFixes } from './plan_fix.js';
+import { facadeFix } from './facade_fix.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
@@ -282,6 +283,8 @@ $('plan-file').addEventListener('change', async (ev) => {
 $('plan-run').addEventListener('click', parsePlan);
 
 // ---- 2 façades
+// Issue 22: the façade tree's corrections (facade_fix.js).
+const fixes = facadeFix({ api, step, loadImage, fresh, toImagePixels, facade: () => state.facade });
 let redrawPhoto = () => {};
 let drag = null;
 
@@ -374,6 +377,7 @@ function drawBoxes(ctx) {
 
 async function selectFacade(name) {
   state.facade = name;
+  fixes.select();
   $('facade-select').value = name;
   if (!name) return;
   const img = await loadImage(fresh(`/files/${name}`));

@@ -14,9 +14,10 @@
 //! - (departure 3, §3.1.6 "every floor has its N_w windows") a cell of the grid whose pixels
 //!   favour wall (window − wall sum ≤ 0) is wall: missing windows, blind bays, a door's place.
 
-use super::floors::{MIN_SIZE, Vertical, search_vertical_kinds};
+use super::floors::{MIN_SIZE, Vertical, floor_band, search_vertical_kinds};
 use super::gradients::{Gradients, Integral};
 use super::params::SearchParams;
+use crate::fixes::Constraints;
 use crate::model::{Facade, FacadeParams, Floor, MAX_COLUMNS};
 
 /// Disjoint intervals [a, b) of `prof` that maximise the sum of `prof` over them less `cost`
@@ -91,12 +92,87 @@ fn kind(i: usize, n: usize) -> usize {
     }
 }
 
+/// A vertical layout relative to the façade top: each floor bottom-up as (top, bottom, window
+/// height, window-to-floor-bottom), and the vertical half of the 18 parameters that sums it up.
+#[derive(Debug, Clone, PartialEq)]
+struct Layout {
+    bands: Vec<(f64, f64, f64, f64)>,
+    stub: FacadeParams,
+}
+
+/// The layout of a searched [`Vertical`], the user's blind floors (from the ground, 1 = the
+/// ground floor) without windows.
+fn searched_layout(ver: &Vertical, fh: usize, blind: &[usize]) -> Layout {
+    let stub = ver.params_stub(fh);
+    let mut bands = stub.floor_bands();
+    for &floor in blind {
+        if let Some(b) = floor.checked_sub(1).and_then(|i| bands.get_mut(i)) {
+            (b.2, b.3) = (0.0, 0.0);
+        }
+    }
+    Layout { bands, stub }
+}
+
+/// Departure (issue 22, §3.1.6–3.1.7): the user's floor lines `lines` (relative rows, top to
+/// bottom, inside the façade) are the floors, of any heights rather than the text's equal
+/// middle floors, and only the window bands are searched, each floor's its own on its kind's
+/// profile (eqs. 3.3–3.4 share one band among the middle floors, measured from their bottom
+/// edges: once a user drags a line the windows do not move with it). Blind floors have none.
+fn fixed_layout(profiles: [&[f64]; 3], lines: &[usize], fh: usize, blind: &[usize]) -> Layout {
+    let mut edges = vec![0];
+    edges.extend_from_slice(lines);
+    edges.push(fh);
+    let n = edges.len() - 1;
+    // Floor i from the ground (0 = ground floor) spans rows edges[n − 1 − i] .. edges[n − i].
+    let bands: Vec<(f64, f64, f64, f64)> = (0..n)
+        .map(|i| {
+            let (t, b) = (edges[n - 1 - i], edges[n - i]);
+            let (wh, wg) = if blind.contains(&(i + 1)) {
+                (0, 0)
+            } else {
+                floor_band(profiles[kind(i, n)], t, b).1
+            };
+            (t as f64, b as f64, wh as f64, wg as f64)
+        })
+        .collect();
+    // The 18 parameters hold one middle floor: the middle floors' mean height and window band.
+    let middle: &[(f64, f64, f64, f64)] = if n > 2 { &bands[1..n - 1] } else { &[] };
+    let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| {
+        if middle.is_empty() {
+            0.0
+        } else {
+            middle.iter().map(f).sum::<f64>() / middle.len() as f64
+        }
+    };
+    let (ground, top) = (bands[0], bands[n - 1]);
+    let stub = FacadeParams {
+        x_fl: 0.0,
+        y_ft: 0.0,
+        x_fr: 0.0,
+        y_fb: fh as f64,
+        h_1: ground.1 - ground.0,
+        h: mean(|b| b.1 - b.0),
+        h_nl: if n > 1 { top.1 - top.0 } else { 0.0 },
+        n_l: n as u32,
+        w_off: 0.0,
+        w_w: 0.0,
+        w_gap: 0.0,
+        w_h: mean(|b| b.2),
+        w_grd: mean(|b| b.3),
+        w_h_ground: ground.2,
+        w_grd_ground: ground.3,
+        w_h_top: if n > 1 { top.2 } else { 0.0 },
+        w_grd_top: if n > 1 { top.3 } else { 0.0 },
+        n_w: 0,
+    };
+    Layout { bands, stub }
+}
+
 /// Window rows per floor kind (relative to the façade top), from a vertical layout.
-fn kind_rows(ver: &Vertical, fh: usize) -> [Vec<(usize, usize)>; 3] {
-    let bands = ver.params_stub(fh).floor_bands();
-    let n = bands.len();
+fn kind_rows(layout: &Layout, fh: usize) -> [Vec<(usize, usize)>; 3] {
+    let n = layout.bands.len();
     let mut out: [Vec<(usize, usize)>; 3] = Default::default();
-    for (i, (_, y1, wh, wg)) in bands.into_iter().enumerate() {
+    for (i, &(_, y1, wh, wg)) in layout.bands.iter().enumerate() {
         if wh > 0.0 {
             let (a, b) = ((y1 - wg - wh).round() as usize, (y1 - wg).round() as usize);
             out[kind(i, n)].push((a, b.min(fh)));
@@ -108,6 +184,18 @@ fn kind_rows(ver: &Vertical, fh: usize) -> [Vec<(usize, usize)>; 3] {
 /// Fits the floors and windows of the façade `r` = [x0, y0, x1, y1] under `Grammar::Columns`,
 /// given the integral of the (clipped) window-minus-wall log-likelihood.
 pub fn fit_columns(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchParams) -> Facade {
+    fit_columns_with(r, d, grads, p, &Constraints::default())
+}
+
+/// [`fit_columns`] under the user's corrections (issue 22): fixed floor lines and column edges
+/// are kept and only the rest is searched; blind floors get no windows.
+pub(crate) fn fit_columns_with(
+    r: [usize; 4],
+    d: &Integral,
+    grads: &Gradients,
+    p: &SearchParams,
+    fixed: &Constraints,
+) -> Facade {
     let [x0, y0, x1, y1] = r;
     let (fw, fh) = (x1 - x0, y1 - y0);
     let y_cands: Vec<usize> = grads.y_peaks(r, p).into_iter().map(|y| y - y0).collect();
@@ -128,6 +216,13 @@ pub fn fit_columns(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPar
                     .sum()
             })
             .collect()
+    };
+    let blind = &fixed.blind;
+    let layout_for = |profiles: [&[f64]; 3]| -> Layout {
+        match &fixed.lines {
+            Some(lines) => fixed_layout(profiles, lines, fh, blind),
+            None => searched_layout(&search_vertical_kinds(profiles, &y_cands, blind), fh, blind),
+        }
     };
     // Start as the text does: rows whose sum over the whole width is above the median row's
     // (at the median too when that leaves none).
@@ -153,59 +248,70 @@ pub fn fit_columns(r: [usize; 4], d: &Integral, grads: &Gradients, p: &SearchPar
         best_intervals(prof, min_w, min_w, p.column_cost * rows as f64)
     };
     let span = |rows: &[(usize, usize)]| -> usize { rows.iter().map(|r| r.1 - r.0).sum() };
-    let first = columns_of(&col_profile(&start), start.len());
+    // The user's columns, when given, are every floor kind's columns in every round.
+    let first = match &fixed.columns {
+        Some(user) => user.clone(),
+        None => columns_of(&col_profile(&start), start.len()),
+    };
     let mut cols: [Vec<(usize, usize)>; 3] = [first.clone(), first.clone(), first];
-    let mut ver = Vertical {
-        n_l: 1,
-        h_1: fh,
-        ..Default::default()
+    let flat = vec![0f64; fh];
+    let mut layout = match &fixed.lines {
+        Some(lines) => fixed_layout([&flat, &flat, &flat], lines, fh, blind),
+        None => {
+            let one = Vertical {
+                n_l: 1,
+                h_1: fh,
+                ..Default::default()
+            };
+            searched_layout(&one, fh, blind)
+        }
     };
     if cols[MIDDLE].is_empty() {
-        return facade_of(r, &ver, &[Vec::new(), Vec::new(), Vec::new()], d);
+        return facade_of(r, &layout, &[Vec::new(), Vec::new(), Vec::new()], d);
     }
     for _ in 0..p.rounds.max(1) {
         let profiles = cols.clone().map(|c| row_profile(&c));
-        let new_ver = search_vertical_kinds(
-            [&profiles[GROUND], &profiles[MIDDLE], &profiles[TOP]],
-            &y_cands,
-        );
+        let new_layout = layout_for([&profiles[GROUND], &profiles[MIDDLE], &profiles[TOP]]);
         // Departure 2: each floor kind's columns from its own window rows; a kind without
         // window rows keeps the columns of all window rows, so it can gain windows next round.
-        let rows = kind_rows(&new_ver, fh);
+        let rows = kind_rows(&new_layout, fh);
         let every: Vec<(usize, usize)> = rows.iter().flatten().copied().collect();
         if every.is_empty() {
-            ver = new_ver;
+            layout = new_layout;
             break;
         }
-        let common = columns_of(&col_profile(&every), span(&every));
-        let new_cols = rows.clone().map(|k| {
-            if k.is_empty() {
-                common.clone()
-            } else {
-                columns_of(&col_profile(&k), span(&k))
+        let new_cols = match &fixed.columns {
+            Some(user) => [user.clone(), user.clone(), user.clone()],
+            None => {
+                let common = columns_of(&col_profile(&every), span(&every));
+                rows.clone().map(|k| {
+                    if k.is_empty() {
+                        common.clone()
+                    } else {
+                        columns_of(&col_profile(&k), span(&k))
+                    }
+                })
             }
-        });
-        let same = new_ver == ver && new_cols == cols;
-        ver = new_ver;
+        };
+        let same = new_layout == layout && new_cols == cols;
+        layout = new_layout;
         cols = new_cols;
         if same {
             break;
         }
     }
-    facade_of(r, &ver, &cols, d)
+    facade_of(r, &layout, &cols, d)
 }
 
 /// The façade tree of a vertical layout and per-kind columns (relative), in image pixels.
 fn facade_of(
     r: [usize; 4],
-    ver: &Vertical,
+    layout: &Layout,
     cols: &[Vec<(usize, usize)>; 3],
     d: &Integral,
 ) -> Facade {
     let [x0, y0, x1, y1] = r;
-    let fh = y1 - y0;
-    let stub = ver.params_stub(fh);
-    let bands = stub.floor_bands();
+    let (stub, bands) = (layout.stub, &layout.bands);
     let n = bands.len();
     let (xf, yf) = (x0 as f64, y0 as f64);
     let mut floors: Vec<Floor> = bands

@@ -79,7 +79,7 @@ impl Vertical {
 }
 
 /// Window band of one floor [f0, f1) of the row profile: (merit, height, distance to bottom).
-fn floor_band(rows: &[f64], f0: usize, f1: usize) -> (f64, (usize, usize)) {
+pub(super) fn floor_band(rows: &[f64], f0: usize, f1: usize) -> (f64, (usize, usize)) {
     match best_band(&rows[f0..f1]) {
         Some((m, t, b)) => (m, (b - t, f1 - f0 - b)),
         None => (0.0, (0, 0)),
@@ -89,13 +89,21 @@ fn floor_band(rows: &[f64], f0: usize, f1: usize) -> (f64, (usize, usize)) {
 /// Exhaustive search of the vertical parameters given the row profile (window-minus-wall
 /// log-likelihood summed over the current window columns). `cands` are relative split rows.
 pub(super) fn search_vertical(rows: &[f64], cands: &[usize]) -> Vertical {
-    search_vertical_kinds([rows, rows, rows], cands)
+    search_vertical_kinds([rows, rows, rows], cands, &[])
 }
 
 /// [`search_vertical`] with one row profile per floor kind — ground, middle, top — each summed
 /// over that kind's own window columns (the per-kind columns of `Grammar::Columns`; the text's
-/// grammar passes one profile three times).
-pub(super) fn search_vertical_kinds(profiles: [&[f64]; 3], cands: &[usize]) -> Vertical {
+/// grammar passes one profile three times). `blind` lists floors the user said have no
+/// windows, counted from the ground (1 = ground floor): layouts with fewer floors are not
+/// considered, and those floors add no merit and no rows to the middle floors' fold (issue 22;
+/// a blind middle floor then has no window band of its own, which [`Vertical`] cannot say: the
+/// caller empties it).
+pub(super) fn search_vertical_kinds(
+    profiles: [&[f64]; 3],
+    cands: &[usize],
+    blind: &[usize],
+) -> Vertical {
     let [ground_rows, middle_rows, top_rows] = profiles;
     let rows = middle_rows;
     let fh = rows.len();
@@ -115,22 +123,34 @@ pub(super) fn search_vertical_kinds(profiles: [&[f64]; 3], cands: &[usize]) -> V
             best = v;
         }
     };
+    let fewest = blind.iter().copied().max().unwrap_or(1);
+    let is_blind = |floor: usize| blind.contains(&floor);
+    // A blind floor's band: none, worth nothing.
+    let band = |floor: usize, rows: &[f64], f0: usize, f1: usize| {
+        if is_blind(floor) {
+            (0.0, (0, 0))
+        } else {
+            floor_band(rows, f0, f1)
+        }
+    };
     // One floor.
-    let (m, g) = floor_band(ground_rows, 0, fh);
-    consider(Vertical {
-        merit: m,
-        n_l: 1,
-        h_1: fh,
-        ground: g,
-        ..Default::default()
-    });
+    if fewest <= 1 {
+        let (m, g) = band(1, ground_rows, 0, fh);
+        consider(Vertical {
+            merit: m,
+            n_l: 1,
+            h_1: fh,
+            ground: g,
+            ..Default::default()
+        });
+    }
     for &c in cands {
-        if c < MIN_SIZE || c + MIN_SIZE > fh {
+        if c < MIN_SIZE || c + MIN_SIZE > fh || fewest > 2 {
             continue;
         }
         // Two floors split at c.
-        let (mt, t) = floor_band(top_rows, 0, c);
-        let (mg, g) = floor_band(ground_rows, c, fh);
+        let (mt, t) = band(2, top_rows, 0, c);
+        let (mg, g) = band(1, ground_rows, c, fh);
         consider(Vertical {
             merit: mt + mg,
             n_l: 2,
@@ -146,22 +166,28 @@ pub(super) fn search_vertical_kinds(profiles: [&[f64]; 3], cands: &[usize]) -> V
         if a < MIN_SIZE {
             continue;
         }
-        let (mt, t) = floor_band(top_rows, 0, a);
+        let top_free = floor_band(top_rows, 0, a);
         for &b in &cands[i + 1..] {
             if b + MIN_SIZE > fh {
                 continue;
             }
-            let (mg, g) = floor_band(ground_rows, b, fh);
+            let (mg, g) = band(1, ground_rows, b, fh);
             let span = b - a;
             for mid in 1..=(MAX_FLOORS as usize - 2) {
                 let hm = span as f64 / mid as f64;
                 if hm < MIN_SIZE as f64 {
                     break;
                 }
+                let n = mid + 2;
+                if fewest > n {
+                    continue;
+                }
+                let (mt, t) = if is_blind(n) { (0.0, (0, 0)) } else { top_free };
                 // Fold the middle floors onto one: shared window height and offset (eqs. 3.3, 3.4).
                 let len = hm.floor() as usize;
                 let mut folded = vec![0f64; len];
-                for k in 0..mid {
+                // Middle floor k from the top is floor n − 1 − k from the ground.
+                for k in (0..mid).filter(|k| !is_blind(n - 1 - k)) {
                     // Aligned to each floor's bottom edge.
                     let bottom = (a as f64 + (k + 1) as f64 * hm).round() as usize;
                     for (o, f) in folded.iter_mut().enumerate() {
@@ -183,6 +209,18 @@ pub(super) fn search_vertical_kinds(profiles: [&[f64]; 3], cands: &[usize]) -> V
                 });
             }
         }
+    }
+    if !best.merit.is_finite() {
+        // No layout has as many floors as a blind floor's number: one floor, windowless if
+        // the ground floor is blind.
+        let (m, g) = band(1, ground_rows, 0, fh);
+        best = Vertical {
+            merit: m,
+            n_l: 1,
+            h_1: fh,
+            ground: g,
+            ..Default::default()
+        };
     }
     best
 }

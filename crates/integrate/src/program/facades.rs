@@ -210,55 +210,85 @@ fn facade_rules(
     } else {
         f.width
     };
-    let mut pieces: Vec<(f64, &str)> = Vec::new();
-    let w = &f.windows;
-    let mut x = -inset;
-    for j in 0..w.count {
-        let start = w.offset + f64::from(j) * (w.width + w.gap) - inset;
-        let (a, b) = (start.max(0.0), (start + w.width).min(wall_len));
-        if b - a < 1e-6 || a < x - 1e-9 {
-            continue;
-        }
-        if a - x.max(0.0) > 1e-6 {
-            pieces.push((a - x.max(0.0), "masonry"));
-        }
-        pieces.push((b - a, "window"));
-        x = b;
-    }
-    let rest = wall_len - x.max(0.0);
-    if rest > 1e-6 {
-        pieces.push((rest, "masonry"));
-    }
-    if reversed {
-        pieces.reverse();
-    }
+    // A row of windows [start, width] along the wall (seen from outside): masonry between
+    // them, as split sizes and symbols.
     let window = format!("{fid}Window");
-    let sizes: Vec<String> = pieces.iter().map(|(l, _)| format!("~{}", n(*l))).collect();
-    let names: Vec<String> = pieces
-        .iter()
-        .map(|(_, s)| {
-            if *s == "window" {
-                window.clone()
-            } else {
-                masonry.to_string()
+    let row = |windows: &[(f64, f64)]| -> (Vec<String>, Vec<String>) {
+        let mut pieces: Vec<(f64, &str)> = Vec::new();
+        let mut x = -inset;
+        for &(start, width) in windows {
+            let start = start - inset;
+            let (a, b) = (start.max(0.0), (start + width).min(wall_len));
+            if b - a < 1e-6 || a < x - 1e-9 {
+                continue;
             }
-        })
+            if a - x.max(0.0) > 1e-6 {
+                pieces.push((a - x.max(0.0), "masonry"));
+            }
+            pieces.push((b - a, "window"));
+            x = b;
+        }
+        let rest = wall_len - x.max(0.0);
+        if rest > 1e-6 {
+            pieces.push((rest, "masonry"));
+        }
+        if reversed {
+            pieces.reverse();
+        }
+        let sizes = pieces.iter().map(|(l, _)| format!("~{}", n(*l))).collect();
+        let names = pieces
+            .iter()
+            .map(|(_, s)| {
+                if *s == "window" {
+                    window.clone()
+                } else {
+                    masonry.to_string()
+                }
+            })
+            .collect();
+        (sizes, names)
+    };
+    let w = &f.windows;
+    let shared: Vec<(f64, f64)> = (0..w.count)
+        .map(|j| (w.offset + f64::from(j) * (w.width + w.gap), w.width))
         .collect();
+    let (sizes, names) = row(&shared);
+    let mut own_rows = String::new();
     for (i, fl) in f.floors.iter().enumerate() {
         let name = &floor_names[i];
-        if fl.windows == 0 || fl.window_height <= 0.0 || !names.contains(&window) {
+        // Issue 22: a floor of a corrected façade has its windows where the user left them.
+        let (row_name, has_window) = match &fl.openings {
+            Some(openings) => {
+                let mine: Vec<(f64, f64)> = openings.iter().map(|o| (o[0], o[1])).collect();
+                let (sizes, names) = row(&mine);
+                let row_name = format!("{fid}Row{}", i + 1);
+                let has = names.contains(&window);
+                if has {
+                    let _ = writeln!(
+                        own_rows,
+                        "{row_name} :: split(\"{run}\", {{{}}}){{{}}};",
+                        sizes.join(", "),
+                        names.join(", ")
+                    );
+                }
+                (row_name, has)
+            }
+            None => (format!("{fid}Row"), names.contains(&window)),
+        };
+        if fl.windows == 0 || fl.window_height <= 0.0 || !has_window {
             let _ = writeln!(rules, "{name} :: {{{masonry}}};");
             continue;
         }
         let above = (fl.height - fl.window_sill - fl.window_height).max(0.0);
         let _ = writeln!(
             rules,
-            "{name} :: split(\"Y\", {{~{}, ~{}, ~{}}}){{{masonry}, {fid}Row, {masonry}}};",
+            "{name} :: split(\"Y\", {{~{}, ~{}, ~{}}}){{{masonry}, {row_name}, {masonry}}};",
             n(fl.window_sill.max(1e-4)),
             n(fl.window_height),
             n(above.max(1e-4))
         );
     }
+    rules.push_str(&own_rows);
     let _ = writeln!(
         rules,
         "{fid}Row :: split(\"{run}\", {{{}}}){{{}}};",
