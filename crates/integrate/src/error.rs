@@ -16,6 +16,12 @@ pub enum IntegrateError {
         why.metres
     )]
     NoScaleBar { plan: String, why: NoScaleBar },
+    /// A user's Gothic element correction (`[[gothic.element]]`) that cannot be applied.
+    #[error("{image}: {error}")]
+    GothicCorrection {
+        image: String,
+        error: facade::gothic::CorrectionError,
+    },
     #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
     Correspondence {
         index: usize,
