@@ -11,6 +11,7 @@ mod conn;
 mod edit_tests;
 #[cfg(test)]
 mod fuzz_tests;
+mod gothic;
 mod guard;
 #[cfg(test)]
 mod guard_tests;
@@ -148,6 +149,8 @@ pub fn router(app: Arc<app::App>) -> Router {
         )
         .route("/api/facades/{name}/facade", post(stages::facade_stage))
         .route("/api/facades/{name}/preview", post(preview::preview))
+        .route("/api/gothic/{name}", post(gothic::estimate))
+        .route("/api/gothic/{name}/elements", put(gothic::save_elements))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(project::file))

@@ -198,6 +198,7 @@ fn check_in_progress(p: &Project) -> Result<(), integrate::project::ProjectError
         ));
     }
     complete.facades.retain(|f| mapped(&f.image));
+    complete.gothics.retain(|g| mapped(&g.image));
     Project::from_toml(&complete.to_toml()).map(|_| ())
 }
 

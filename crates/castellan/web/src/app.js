@@ -3,6 +3,7 @@
 // façade overlay) → correspondences (click a façade point, then plan point(s)) → reconstruction
 // shown in the model viewer. Every change is saved by the server.
 import { showModel } from './viewer.js';
+import { setupGothic } from './gothic_fix.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
@@ -695,10 +696,14 @@ async function refresh() {
   const facades = (p.project && p.project.facade) || [];
   select.replaceChildren(...facades.map((f) => new Option(f.image, f.image)));
   document.title = `castellan — ${p.dir}`;
+  gothic.show(p.project);
   await showPlan();
   if (facades.length && !facades.some((f) => f.image === state.facade)) await selectFacade(facades[0].image);
   return p;
 }
+
+// The Gothic step (gothic_fix.js), sharing the page's API calls and project version.
+const gothic = setupGothic({ api, step, upload, refresh });
 
 refresh()
   .then((p) => {

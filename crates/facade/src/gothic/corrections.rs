@@ -242,19 +242,26 @@ impl Handles {
     }
 }
 
-/// The element `point` picks among `shapes`: the smallest one containing it (a window inside
-/// its enclosing arch is the window), else the nearest within [`PICK_SLACK`] px of its box.
-pub fn pick(shapes: &[Theta], point: [f64; 2]) -> Option<usize> {
+/// The smallest of `shapes` containing `point` (a window inside its enclosing arch is the
+/// window).
+pub fn pick_containing(shapes: &[Theta], point: [f64; 2]) -> Option<usize> {
     let [x, y] = point;
     let area = |t: &Theta| t.w * (t.h + t.v);
-    let inside = shapes
+    shapes
         .iter()
         .enumerate()
         .filter(|(_, t)| t.contains(x, y))
-        .min_by(|a, b| area(a.1).total_cmp(&area(b.1)));
-    if let Some((i, _)) = inside {
+        .min_by(|a, b| area(a.1).total_cmp(&area(b.1)))
+        .map(|(i, _)| i)
+}
+
+/// The element `point` picks among `shapes`: the smallest one containing it, else the nearest
+/// within [`PICK_SLACK`] px of its box.
+pub fn pick(shapes: &[Theta], point: [f64; 2]) -> Option<usize> {
+    if let Some(i) = pick_containing(shapes, point) {
         return Some(i);
     }
+    let [x, y] = point;
     let box_distance = |t: &Theta| {
         let [x0, y0, x1, y1] = t.bbox();
         let dx = (x0 - x).max(0.0).max(x - x1);
@@ -280,9 +287,11 @@ pub struct Corrected {
     /// The shapes the user deleted: an enclosing arch proposed over the same box is not made
     /// again.
     pub deleted: Vec<Theta>,
-    /// Per correction, what it did; `element` is the index into `items` here (the estimate's id
-    /// is set by [`super::estimate_corrected`]).
+    /// Per correction, what it did; `element` is the index into `items`.
     pub applied: Vec<Applied>,
+    /// Corrections whose point no detected element contains: applied after grouping, when
+    /// the enclosing arches exist ([`resolve`]).
+    pub deferred: Vec<(usize, ElementCorrection, Action)>,
 }
 
 impl Corrected {
@@ -293,6 +302,7 @@ impl Corrected {
             items: found,
             deleted: Vec::new(),
             applied: Vec::new(),
+            deferred: Vec::new(),
         }
     }
 }
@@ -324,6 +334,7 @@ pub fn apply(
     let mut deleted = Vec::new();
     let mut applied = Vec::new();
     let mut added = Vec::new();
+    let mut deferred = Vec::new();
     for (index, c) in corrections.iter().enumerate() {
         let fail = |problem: String| CorrectionError { index, problem };
         let action = c.action().map_err(fail)?;
@@ -336,13 +347,12 @@ pub fn apply(
         let target = match action {
             Action::Add => None,
             Action::Delete | Action::Move => {
-                let i = pick(&detected, c.point).ok_or_else(|| {
-                    fail(format!(
-                        "no detected element contains [{x}, {y}] or lies within {PICK_SLACK} px \
-                         of it ({} detected)",
-                        detected.len()
-                    ))
-                })?;
+                // Only an element containing the point here: one the hierarchy makes (an
+                // enclosing arch no seed found) is picked after grouping (`resolve`).
+                let Some(i) = pick_containing(&detected, c.point) else {
+                    deferred.push((index, c.clone(), action));
+                    continue;
+                };
                 if let Some(other) = picked[i] {
                     return Err(fail(format!(
                         "picks the same element as element #{}; give each element one entry",
@@ -417,7 +427,132 @@ pub fn apply(
         pinned: kept_pinned,
         deleted,
         applied,
+        deferred,
     })
+}
+
+/// The elements after grouping and the enclosing arches, as `organise` holds them.
+pub(crate) struct Organised<'a> {
+    pub items: &'a mut Vec<Candidate>,
+    pub pinned: &'a mut Vec<bool>,
+    pub group_of: &'a mut Vec<Option<usize>>,
+    pub groups: &'a mut Vec<Vec<usize>>,
+}
+
+/// The corrections whose point no detected element contained, applied to the organised
+/// elements (the enclosing arches included): the smallest element containing the point, else
+/// the nearest within [`PICK_SLACK`] px. A moved element leaves its group.
+pub(crate) fn resolve(
+    dt: &DistanceMap,
+    o: Organised,
+    deferred: &[(usize, ElementCorrection, Action)],
+    applied: &mut Vec<Applied>,
+    params: &GothicParams,
+) -> Result<(), CorrectionError> {
+    let (width, height) = (dt.width as f64, dt.height as f64);
+    let mut remove = vec![false; o.items.len()];
+    let mut taken: Vec<Option<usize>> = applied
+        .iter()
+        .fold(vec![None; o.items.len()], |mut t, a| {
+            if let Some(i) = a.element.filter(|&i| i < t.len()) {
+                t[i] = Some(a.correction);
+            }
+            t
+        });
+    let shapes: Vec<Theta> = o.items.iter().map(|c| c.theta).collect();
+    for (index, c, action) in deferred {
+        let fail = |problem: String| CorrectionError {
+            index: *index,
+            problem,
+        };
+        let [x, y] = c.point;
+        let i = pick(&shapes, c.point).ok_or_else(|| {
+            fail(format!(
+                "no element contains [{x}, {y}] or lies within {PICK_SLACK} px of it ({} \
+                 found)",
+                shapes.len()
+            ))
+        })?;
+        if let Some(other) = taken[i] {
+            return Err(fail(format!(
+                "picks the same element as element #{}; give each element one entry",
+                other + 1
+            )));
+        }
+        taken[i] = Some(*index);
+        let detected = Some(shapes[i]);
+        if *action == Action::Delete {
+            remove[i] = true;
+            applied.push(Applied {
+                correction: *index,
+                action: *action,
+                element: None,
+                detected,
+            });
+            continue;
+        }
+        let shape = c.reshape(&shapes[i]);
+        check_shape(&shape, width, height).map_err(fail)?;
+        o.items[i] = Candidate {
+            theta: shape,
+            fit: fit(dt, &shape, params.step),
+        };
+        o.pinned[i] = true;
+        if let Some(g) = o.group_of[i].take() {
+            o.groups[g].retain(|&m| m != i);
+        }
+        applied.push(Applied {
+            correction: *index,
+            action: *action,
+            element: Some(i),
+            detected,
+        });
+    }
+    // The deleted ones leave; indices and groups follow.
+    let mut new_index = vec![None; remove.len()];
+    let mut n = 0;
+    for (i, r) in remove.iter().enumerate() {
+        if !r {
+            new_index[i] = Some(n);
+            n += 1;
+        }
+    }
+    let mut k = 0;
+    o.items.retain(|_| {
+        k += 1;
+        !remove[k - 1]
+    });
+    let mut k = 0;
+    o.pinned.retain(|_| {
+        k += 1;
+        !remove[k - 1]
+    });
+    let mut group_of: Vec<Option<usize>> = o
+        .group_of
+        .iter()
+        .zip(&remove)
+        .filter(|(_, r)| !**r)
+        .map(|(g, _)| *g)
+        .collect();
+    let mut new_group = vec![None; o.groups.len()];
+    let mut groups = Vec::new();
+    for (g, members) in o.groups.iter().enumerate() {
+        let members: Vec<usize> = members.iter().filter_map(|&m| new_index[m]).collect();
+        if members.len() >= 2 {
+            new_group[g] = Some(groups.len());
+            groups.push(members);
+        }
+    }
+    for g in &mut group_of {
+        *g = g.and_then(|g| new_group[g]);
+    }
+    *o.group_of = group_of;
+    *o.groups = groups;
+    for a in applied.iter_mut() {
+        a.element = a.element.and_then(|i| new_index[i]);
+    }
+    applied.sort_by_key(|a| a.correction);
+    Ok(())
 }
 
 /// A corrected shape must be an element inside the photo (the checks of
@@ -652,6 +787,44 @@ mod tests {
         }
 
         #[test]
+        fn an_arch_only_the_hierarchy_made_is_picked_after_grouping() {
+            let (s, d, _) = facade();
+            let arch = s.elements[0].theta;
+            // The detection without the arch: it comes back as the windows' enclosing arch.
+            let without = Detection {
+                dt: d.dt.clone(),
+                found: d
+                    .found
+                    .iter()
+                    .filter(|c| iou(&c.theta, &arch) < 0.5)
+                    .copied()
+                    .collect(),
+            };
+            assert_eq!(without.found.len(), d.found.len() - 1);
+            let params = GothicParams::default();
+            let (plain, _) = estimate_corrected(&without, &[], &params, &|_| {}).unwrap();
+            let inside = [arch.x0 + arch.w / 2.0, arch.apex() + 10.0];
+            let shapes = |e: &GothicEstimate| -> Vec<Theta> {
+                e.elements.iter().map(|e| e.theta()).collect()
+            };
+            let made = pick_containing(&shapes(&plain), inside).expect("an enclosing arch");
+            let t = plain.elements[made].theta();
+            assert!(t.w > 0.8 * arch.w && t.w < 1.2 * arch.w, "{t:?} vs {arch:?}");
+            let mut delete = ElementCorrection::at(inside);
+            delete.delete = true;
+            let (est, applied) = estimate_corrected(&without, &[delete], &params, &|_| {}).unwrap();
+            assert_eq!(est.elements.len(), plain.elements.len() - 1);
+            assert_eq!(pick_containing(&shapes(&est), inside), None);
+            assert_eq!(applied[0].element, None);
+            let mut moved = ElementCorrection::at(inside);
+            moved.apex = Some(t.apex() - 5.0);
+            let (est, applied) = estimate_corrected(&without, &[moved], &params, &|_| {}).unwrap();
+            let id = applied[0].element.unwrap();
+            assert_eq!(id, made);
+            assert!((est.elements[id].theta().apex() - (t.apex() - 5.0)).abs() <= 0.5);
+        }
+
+        #[test]
         fn a_dragged_apex_lands_at_the_given_y_and_stays_in_its_arch() {
             let (s, _, before) = facade();
             let window = s.elements[4].theta; // a pointed window of the second bay
@@ -726,7 +899,7 @@ mod tests {
             assert!(e.starts_with("element #2: point [900, 10] is outside"), "{e}");
             let mut nothing = ElementCorrection::at([5.0, 5.0]);
             nothing.delete = true;
-            assert!(err(vec![nothing]).contains("no detected element"));
+            assert!(err(vec![nothing]).contains("no element contains"));
             let mut twice = ok.clone();
             twice.apex = Some(window.apex() - 4.0);
             assert!(err(vec![ok.clone(), twice]).contains("same element as element #1"));

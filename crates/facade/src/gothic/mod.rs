@@ -112,12 +112,7 @@ pub fn estimate_with_progress(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<GothicEstimate> {
     let detection = detect_elements(img, params, progress)?;
-    Ok(organise_with_progress(
-        &detection.dt,
-        Corrected::none(detection.found),
-        params,
-        progress,
-    ))
+    Ok(organise_plain(&detection.dt, detection.found, params, progress))
 }
 
 /// The slow half of §4.2 (edges, distance transform, every seed maximised), kept so the
@@ -156,17 +151,29 @@ pub fn estimate_corrected(
         corrections,
         params,
     )?;
-    let applied = corrected.applied.clone();
-    // Organising keeps the indices of the items it was given and appends enclosing arches,
-    // so `element` is already the estimate's id.
-    let est = organise_with_progress(&detection.dt, corrected, params, progress);
-    Ok((est, applied))
+    // Organising keeps the indices of the items it was given and appends enclosing arches;
+    // `resolve` keeps the ids of what it applies in step with its deletions.
+    organise_with_progress(&detection.dt, corrected, params, progress)
 }
 
 /// Grouping, joint re-estimation and enclosing arches over detected elements, up to
 /// `max_levels` rounds; then parents, depths and groups as GOTHIC.json has them.
 pub fn organise(dt: &DistanceMap, found: Vec<Candidate>, params: &GothicParams) -> GothicEstimate {
-    organise_with_progress(dt, Corrected::none(found), params, &|_| {})
+    organise_plain(dt, found, params, &|_| {})
+}
+
+/// [`organise`] without corrections: nothing can fail.
+fn organise_plain(
+    dt: &DistanceMap,
+    found: Vec<Candidate>,
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> GothicEstimate {
+    match organise_with_progress(dt, Corrected::none(found), params, progress) {
+        Ok((est, _)) => est,
+        // Only a correction can fail, and there is none.
+        Err(_) => finish(dt, Vec::new(), Vec::new(), Vec::new(), params),
+    }
 }
 
 /// Issue 22: elements the user set are `pinned` — left out of the groups (a group's shared
@@ -177,12 +184,13 @@ fn organise_with_progress(
     corrected: Corrected,
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
-) -> GothicEstimate {
+) -> std::result::Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
     let Corrected {
         mut items,
         mut pinned,
         deleted,
-        ..
+        mut applied,
+        deferred,
     } = corrected;
     let mut group_of: Vec<Option<usize>> = vec![None; items.len()];
     let mut groups: Vec<Vec<usize>> = Vec::new();
@@ -253,12 +261,26 @@ fn organise_with_progress(
             }
         }
     }
+    if !deferred.is_empty() {
+        corrections::resolve(
+            dt,
+            corrections::Organised {
+                items: &mut items,
+                pinned: &mut pinned,
+                group_of: &mut group_of,
+                groups: &mut groups,
+            },
+            &deferred,
+            &mut applied,
+            params,
+        )?;
+    }
     for (c, &user) in items.iter_mut().zip(&pinned) {
         if !user {
             *c = snap_round(dt, *c, params);
         }
     }
-    finish(dt, items, group_of, groups, params)
+    Ok((finish(dt, items, group_of, groups, params), applied))
 }
 
 /// Where an arc meets its jambs tangentially the springing line barely moves the contour, so
