@@ -16,9 +16,9 @@ use crate::estimate::{
     Side, Structure, WindowColumns,
 };
 use crate::gothic::GothicFacadeEstimate;
-use crate::project::gothic_element_entry;
 use crate::photo::FacadeEstimate;
 use crate::project::Correspondence;
+use crate::project::gothic_element_entry;
 use crate::textures::Texture;
 use plan::scale::{GivenScale, ModelScale, ScaleNote};
 
@@ -260,7 +260,13 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
     for (k, (structure, maps)) in structures.iter_mut().zip(&gothic_mappings).enumerate() {
         for (j, (g, placement)) in maps.iter().enumerate() {
             let est = &inputs.gothics[*g];
-            map_gothic(structure, est, *g, placement, &format!("g{}_{}", k + 1, j + 1));
+            map_gothic(
+                structure,
+                est,
+                *g,
+                placement,
+                &format!("g{}_{}", k + 1, j + 1),
+            );
         }
     }
     crate::heights::propagate(&mut structures);

@@ -259,10 +259,7 @@ impl Project {
             }
             for (j, c) in g.elements.iter().enumerate() {
                 if let Err(why) = c.action() {
-                    return bad(format!(
-                        "{}: {why}",
-                        gothic_element_entry(i, j, &g.image)
-                    ));
+                    return bad(format!("{}: {why}", gothic_element_entry(i, j, &g.image)));
                 }
             }
         }

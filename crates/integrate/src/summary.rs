@@ -84,11 +84,15 @@ pub fn line(e: &Estimate) -> String {
     by_role(e)
         .iter()
         .map(|r| {
-            let told: Vec<String> = [(r.user, "set by you"), (r.measured, "measured"), (r.lent, "lent")]
-                .iter()
-                .filter(|(k, _)| *k > 0)
-                .map(|(k, what)| format!("{k} {what}"))
-                .collect();
+            let told: Vec<String> = [
+                (r.user, "set by you"),
+                (r.measured, "measured"),
+                (r.lent, "lent"),
+            ]
+            .iter()
+            .filter(|(k, _)| *k > 0)
+            .map(|(k, what)| format!("{k} {what}"))
+            .collect();
             if told.is_empty() {
                 r.counted()
             } else {

@@ -105,12 +105,15 @@ fn a_project_with_gothic_corrections_reconstructs_with_them() {
     assert_eq!(matching(&shapes(&after), &deleted), None);
     let id = after.applied[1].element.expect("the moved window");
     assert!((after.estimate.elements[id].theta().apex() - apex).abs() <= 0.5);
-    assert!(after.estimate.elements[id].parent.is_some(), "still in its arch");
+    assert!(
+        after.estimate.elements[id].parent.is_some(),
+        "still in its arch"
+    );
 
     // The whole reconstruction: the keep's Gothic façade holds one element less, its program
     // has one element less, and estimate.json says who set what.
-    let r = pipeline::reconstruct(&corrected, &files, &pipeline::Options::default(), &|_| {})
-        .unwrap();
+    let r =
+        pipeline::reconstruct(&corrected, &files, &pipeline::Options::default(), &|_| {}).unwrap();
     let gothic_facade = r
         .estimate
         .structures
@@ -127,10 +130,7 @@ fn a_project_with_gothic_corrections_reconstructs_with_them() {
         .find(|(name, _)| *name == g.program)
         .unwrap()
         .1;
-    let declared = program
-        .lines()
-        .filter(|l| l.starts_with("float e"))
-        .count();
+    let declared = program.lines().filter(|l| l.starts_with("float e")).count();
     assert_eq!(declared, after.estimate.elements.len());
     let user: Vec<(&String, &String)> = structure
         .provenance
@@ -174,5 +174,8 @@ fn a_correction_that_cannot_apply_names_its_entry() {
     );
     let text = text.replace("width = 0", "springing = 50\napex = 60");
     let e = Project::from_toml(&text).unwrap_err().to_string();
-    assert!(e.contains("apex = 60 is below the springing line (50)"), "{e}");
+    assert!(
+        e.contains("apex = 60 is below the springing line (50)"),
+        "{e}"
+    );
 }

@@ -18,7 +18,9 @@ use integrate::textures::safe_stem;
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use super::app::{ApiError, App, Saved, blocking, check_version, err, file_url, if_match, versioned};
+use super::app::{
+    ApiError, App, Saved, blocking, check_version, err, file_url, if_match, versioned,
+};
 use crate::images::png;
 
 /// What detection depends on: the photo's bytes and how it is rectified and cut.
@@ -124,11 +126,7 @@ fn detected(
 
 /// One element as the page draws it: handles in rectified photo pixels, the correction that
 /// set it (its index in `[[gothic.element]]`) if any.
-fn element_json(
-    e: &facade::gothic::Element,
-    origin: [f64; 2],
-    applied: &[Applied],
-) -> Value {
+fn element_json(e: &facade::gothic::Element, origin: [f64; 2], applied: &[Applied]) -> Value {
     let h = Handles::of(&e.theta());
     let correction = applied
         .iter()
@@ -159,7 +157,11 @@ fn run(
         integrate::gothic::organise(&detection, corrections, origin).map_err(|e| {
             ApiError(
                 StatusCode::UNPROCESSABLE_ENTITY,
-                format!("{}: {}", gothic_element_entry(index, e.index, &g.image), e.problem),
+                format!(
+                    "{}: {}",
+                    gothic_element_entry(index, e.index, &g.image),
+                    e.problem
+                ),
             )
         })?;
     let stem = safe_stem(&g.image);
@@ -167,7 +169,10 @@ fn run(
     let overlay_file = format!("out/overlays/{stem}_gothic.png");
     let mut files = vec![(
         overlay_file.clone(),
-        encode(&facade::gothic::draw::overlay(&cutout.facade, &est, None), &overlay_file)?,
+        encode(
+            &facade::gothic::draw::overlay(&cutout.facade, &est, None),
+            &overlay_file,
+        )?,
     )];
     if ran || app.store.existing(&facade_file).ok().flatten().is_none() {
         files.push((facade_file.clone(), encode(&cutout.facade, &facade_file)?));

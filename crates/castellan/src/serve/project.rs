@@ -86,7 +86,8 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
         }
     }
     let bad = |m: &str| ApiError(StatusCode::BAD_REQUEST, m.to_string());
-    let kind = kind.ok_or_else(|| bad("the upload has no `kind` field (plan, facade or gothic)"))?;
+    let kind =
+        kind.ok_or_else(|| bad("the upload has no `kind` field (plan, facade or gothic)"))?;
     if !["plan", "facade", "gothic"].contains(&kind.as_str()) {
         return Err(bad("`kind` must be plan, facade or gothic"));
     }

@@ -112,7 +112,12 @@ pub fn estimate_with_progress(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<GothicEstimate> {
     let detection = detect_elements(img, params, progress)?;
-    Ok(organise_plain(&detection.dt, detection.found, params, progress))
+    Ok(organise_plain(
+        &detection.dt,
+        detection.found,
+        params,
+        progress,
+    ))
 }
 
 /// The slow half of §4.2 (edges, distance transform, every seed maximised), kept so the
@@ -145,12 +150,8 @@ pub fn estimate_corrected(
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> std::result::Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
-    let corrected = corrections::apply(
-        &detection.dt,
-        detection.found.clone(),
-        corrections,
-        params,
-    )?;
+    let corrected =
+        corrections::apply(&detection.dt, detection.found.clone(), corrections, params)?;
     // Organising keeps the indices of the items it was given and appends enclosing arches;
     // `resolve` keeps the ids of what it applies in step with its deletions.
     organise_with_progress(&detection.dt, corrected, params, progress)
