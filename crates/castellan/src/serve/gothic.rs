@@ -212,15 +212,20 @@ pub struct RunOptions {
 }
 
 /// POST /api/gothic/{image}: ch. 4 on the photo with its saved corrections → the elements with
-/// their handles and the overlay.
+/// their handles and the overlay. The body is optional (empty: change nothing).
 pub async fn estimate(
     State(app): State<Arc<App>>,
     Path(name): Path<String>,
     headers: HeaderMap,
-    body: Option<Json<RunOptions>>,
+    body: axum::body::Bytes,
 ) -> Saved {
     let if_match = if_match(&headers);
-    let options = body.map(|Json(o)| o).unwrap_or_default();
+    let options: RunOptions = if body.iter().all(u8::is_ascii_whitespace) {
+        RunOptions::default()
+    } else {
+        serde_json::from_slice(&body)
+            .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("the body: {e}")))?
+    };
     blocking(app, "gothic", move |app| {
         let mut p = app.store.require().map_err(err(StatusCode::CONFLICT))?;
         let index = entry_index(&p, &name)?;
