@@ -212,7 +212,9 @@ export function setupGothic({ api, step, upload, refresh }) {
         width: round(values.width ?? e.width),
         centre: round(e.centre),
       };
-    if (e.correction !== null && !list[e.correction].add) list[e.correction] = entry;
+    // Deleting an element the user added takes its entry away.
+    if (values === 'delete' && e.correction !== null && list[e.correction].add) list.splice(e.correction, 1);
+    else if (e.correction !== null && !list[e.correction].add) list[e.correction] = entry;
     else if (e.correction !== null) list[e.correction] = { ...list[e.correction], ...entry, point: base.point, add: true };
     else list.push(entry);
     return list;
