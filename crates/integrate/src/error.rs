@@ -19,6 +19,12 @@ pub enum IntegrateError {
     /// A `[[structure]]` correction that cannot apply; the message names the entry.
     #[error("{0}")]
     Correction(String),
+    /// A user's Gothic element correction (`[[gothic.element]]`) that cannot be applied.
+    #[error("{image}: {error}")]
+    GothicCorrection {
+        image: String,
+        error: facade::gothic::CorrectionError,
+    },
     #[error("[[correspondence]] #{index} (facade = \"{facade}\"): {message}")]
     Correspondence {
         index: usize,

@@ -1,10 +1,15 @@
 //! A Gothic façade photo through chapter 4 for integration: rectification (§3.1.1), the façade
 //! cut out of the rectified photo, its arches, groups and nesting (§4.1–4.2) and its masonry;
 //! then, once its scale on the plan is known, the block-level VSG program that replaces the
-//! wall it maps to (§6.1.3), imported by the generated model.
+//! wall it maps to (§6.1.3), imported by the generated model. The user's element corrections
+//! (issue 22, PROJECT.toml `[[gothic.element]]`, in rectified photo pixels) are applied between
+//! detection and grouping (`facade::gothic::corrections`).
 
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
-use facade::gothic::{GothicEstimate, GothicParams, VsgOptions, estimate, to_vsg};
+use facade::gothic::{
+    Applied, CorrectionError, Detection, ElementCorrection, GothicEstimate, GothicParams,
+    VsgOptions, detect_elements, estimate_corrected, to_vsg,
+};
 use facade::rectify::{ManualLines, Rectification};
 use image::RgbImage;
 use nalgebra::Matrix3;
@@ -20,6 +25,18 @@ pub struct GothicPhoto<'a> {
     pub bbox: Option<[f64; 4]>,
     pub lines: Option<&'a ManualLines>,
     pub rectified: bool,
+    /// The user's element corrections, in rectified photo pixels.
+    pub corrections: &'a [ElementCorrection],
+}
+
+/// The rectified photo cut to its façade: the picture chapter 4 runs on.
+pub struct GothicCutout {
+    pub homography: Matrix3<f64>,
+    pub rectification: Option<Rectification>,
+    /// The façade's box in the rectified photo [x0, y0, x1, y1]; its corner is the cut-out's
+    /// origin.
+    pub bbox: [f64; 4],
+    pub facade: RgbImage,
 }
 
 /// The chapter 4 estimate of one photo, in the pixels of the façade cut-out.
@@ -34,10 +51,12 @@ pub struct GothicFacadeEstimate {
     pub facade: RgbImage,
     pub estimate: GothicEstimate,
     pub masonry: Masonry,
+    /// What each of the user's corrections did (element ids of `estimate`).
+    pub applied: Vec<Applied>,
 }
 
-/// Runs §3.1.1 and §4.1–4.2 on one photo.
-pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
+/// §3.1.1 on one photo and the façade cut out of it.
+pub fn cut_out(photo: &GothicPhoto) -> Result<GothicCutout, IntegrateError> {
     let Rectified {
         rectification,
         homography,
@@ -50,17 +69,57 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
             ([0.0, 0.0, f64::from(w), f64::from(h)], rectified)
         }
     };
-    let estimate = estimate(&facade, &GothicParams::default())
-        .map_err(|e| IntegrateError::facade(photo.name, "arches (§4.1–4.2)", e))?;
-    let masonry = masonry::segment(&facade, &estimate, &MasonryParams::default());
-    Ok(GothicFacadeEstimate {
-        name: photo.name.to_string(),
+    Ok(GothicCutout {
         homography,
         rectification,
         bbox,
         facade,
+    })
+}
+
+/// §4.2's detection on a cut-out (the slow half; `serve` keeps it between corrections).
+pub fn detect(name: &str, cutout: &GothicCutout) -> Result<Detection, IntegrateError> {
+    detect_elements(&cutout.facade, &GothicParams::default(), &|_| {})
+        .map_err(|e| IntegrateError::facade(name, "arches (§4.1–4.2)", e))
+}
+
+/// The elements with the user's corrections (rectified photo pixels, moved into the cut-out
+/// whose corner is `origin`), grouped and nested.
+pub fn organise(
+    detection: &Detection,
+    corrections: &[ElementCorrection],
+    origin: [f64; 2],
+) -> Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
+    let moved: Vec<ElementCorrection> = corrections
+        .iter()
+        .map(|c| c.shifted(-origin[0], -origin[1]))
+        .collect();
+    estimate_corrected(detection, &moved, &GothicParams::default(), &|_| {})
+}
+
+/// Runs §3.1.1 and §4.1–4.2 on one photo, with the user's corrections.
+pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
+    let cutout = cut_out(photo)?;
+    let detection = detect(photo.name, &cutout)?;
+    let (estimate, applied) = organise(
+        &detection,
+        photo.corrections,
+        [cutout.bbox[0], cutout.bbox[1]],
+    )
+    .map_err(|error| IntegrateError::GothicCorrection {
+        image: photo.name.to_string(),
+        error,
+    })?;
+    let masonry = masonry::segment(&cutout.facade, &estimate, &MasonryParams::default());
+    Ok(GothicFacadeEstimate {
+        name: photo.name.to_string(),
+        homography: cutout.homography,
+        rectification: cutout.rectification,
+        bbox: cutout.bbox,
+        facade: cutout.facade,
         estimate,
         masonry,
+        applied,
     })
 }
 

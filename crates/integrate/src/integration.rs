@@ -18,6 +18,7 @@ use crate::estimate::{
 use crate::gothic::GothicFacadeEstimate;
 use crate::photo::FacadeEstimate;
 use crate::project::Correspondence;
+use crate::project::gothic_element_entry;
 use crate::textures::Texture;
 use plan::scale::{GivenScale, ModelScale, ScaleNote};
 
@@ -280,7 +281,13 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
     for (k, (structure, maps)) in structures.iter_mut().zip(&gothic_mappings).enumerate() {
         for (j, (g, placement)) in maps.iter().enumerate() {
             let est = &inputs.gothics[*g];
-            map_gothic(structure, est, placement, &format!("g{}_{}", k + 1, j + 1));
+            map_gothic(
+                structure,
+                est,
+                *g,
+                placement,
+                &format!("g{}_{}", k + 1, j + 1),
+            );
         }
     }
     crate::heights::propagate(&mut structures);
@@ -312,6 +319,7 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
 fn map_gothic(
     structure: &mut Structure,
     est: &GothicFacadeEstimate,
+    entry: usize,
     placement: &Placement,
     alias: &str,
 ) {
@@ -350,6 +358,19 @@ fn map_gothic(
             None,
         ),
     );
+    // Issue 22: the elements the user set, moved or deleted, each named by its entry
+    // (`gothic.IMAGE.element.ID` for one in the estimate, `gothic.IMAGE.deleted.N` for the
+    // N-th correction, a deletion).
+    for a in &est.applied {
+        let key = match a.element {
+            Some(id) => format!("gothic.{}.element.{id}", est.name),
+            None => format!("gothic.{}.deleted.{}", est.name, a.correction + 1),
+        };
+        structure.provenance.insert(
+            key,
+            Provenance::user(gothic_element_entry(entry, a.correction, &est.name)),
+        );
+    }
     let mapped = MappedFacade {
         image: est.name.clone(),
         side,

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use crate::estimate::Estimate;
 use crate::gothic::{GothicFacadeEstimate, GothicPhoto, estimate_gothic};
 use crate::photo::{FacadeEstimate, FacadePhoto, crop, estimate_facade};
-use crate::project::{FacadeEntry, GothicEntry, Project, TrainingSource};
+use crate::project::{FacadeEntry, GothicEntry, Project, TrainingSource, gothic_element_entry};
 use crate::textures::{MAX_SAMPLE_SIDE, Texture, box_size, power_of_two, safe_stem, wall_samples};
 use crate::{Inputs, IntegrateError, integrate};
 
@@ -301,8 +301,16 @@ pub fn estimate_gothic_photo(
         bbox: g.bbox,
         lines: lines.as_ref(),
         rectified: g.rectified,
+        corrections: &g.elements,
     })
-    .map_err(|e| at(entry)(e.to_string()))?;
+    .map_err(|e| match e {
+        // Named by the correction itself: `[[gothic]] #1 element #2 (image = …): …`.
+        IntegrateError::GothicCorrection { error, .. } => PipelineError::Entry {
+            entry: gothic_element_entry(index, error.index, &g.image),
+            message: error.problem,
+        },
+        e => at(entry)(e.to_string()),
+    })?;
     let stem = safe_stem(&estimate.name);
     let mut overlays = lines_overlay(
         &estimate.name,

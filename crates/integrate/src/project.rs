@@ -120,6 +120,20 @@ pub struct GothicEntry {
     pub lines: Option<String>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub rectified: bool,
+    /// The user's corrections of the detected elements (issue 22; `[[gothic.element]]`), in
+    /// the rectified photo's pixels: an element picked by a point inside it, deleted or given
+    /// its springing line, apex, width, centre or sill; or an element added.
+    #[serde(default, rename = "element", skip_serializing_if = "Vec::is_empty")]
+    pub elements: Vec<facade::gothic::ElementCorrection>,
+}
+
+/// How errors and provenance name one Gothic element correction (indices from 0).
+pub fn gothic_element_entry(gothic: usize, element: usize, image: &str) -> String {
+    format!(
+        "[[gothic]] #{} element #{} (image = \"{image}\")",
+        gothic + 1,
+        element + 1
+    )
 }
 
 /// Where a façade's training boxes come from.
@@ -289,6 +303,11 @@ impl Project {
             }
             if g.bbox.is_some_and(|b| !is_box(&b)) {
                 return entry("gothic", i, &g.image, NOT_A_BOX);
+            }
+            for (j, c) in g.elements.iter().enumerate() {
+                if let Err(why) = c.action() {
+                    return bad(format!("{}: {why}", gothic_element_entry(i, j, &g.image)));
+                }
             }
         }
         for (i, f) in self.facades.iter().enumerate() {

@@ -263,6 +263,7 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
         bbox: None,
         lines: None,
         rectified: true,
+        corrections: &[],
     })
     .unwrap();
     assert!(!gothic.estimate.elements.is_empty());

@@ -17,6 +17,7 @@ mod facade_fix;
 mod facade_fix_tests;
 #[cfg(test)]
 mod fuzz_tests;
+mod gothic;
 mod guard;
 #[cfg(test)]
 mod guard_tests;
@@ -168,6 +169,8 @@ pub fn router(app: Arc<app::App>) -> Router {
             put(facade_fix::save).delete(facade_fix::remove),
         )
         .route("/api/facades/{name}/tree", post(facade_fix::tree))
+        .route("/api/gothic/{name}", post(gothic::estimate))
+        .route("/api/gothic/{name}/elements", put(gothic::save_elements))
         .route("/api/correspondences", put(stages::correspondences))
         .route("/api/reconstruct", post(stages::reconstruct))
         .route("/files/{*path}", get(project::file))

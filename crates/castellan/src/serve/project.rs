@@ -9,7 +9,7 @@ use axum::Json;
 use axum::extract::{Multipart, Path, State};
 use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use integrate::project::{FacadeEntry, Project, TrainingSource};
+use integrate::project::{FacadeEntry, GothicEntry, Project, TrainingSource};
 use integrate::textures::safe_stem;
 use serde_json::{Value, json};
 
@@ -77,7 +77,7 @@ pub async fn progress(State(app): State<Arc<App>>) -> Json<Value> {
     Json(app.progress_now())
 }
 
-/// POST /api/upload: multipart fields `kind` (`plan` or `facade`) and `file`.
+/// POST /api/upload: multipart fields `kind` (`plan`, `facade` or `gothic`) and `file`.
 pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: Multipart) -> Saved {
     let if_match = if_match(&headers);
     let mut kind = None;
@@ -99,9 +99,10 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
         }
     }
     let bad = |m: &str| ApiError(StatusCode::BAD_REQUEST, m.to_string());
-    let kind = kind.ok_or_else(|| bad("the upload has no `kind` field (plan or facade)"))?;
-    if kind != "plan" && kind != "facade" {
-        return Err(bad("`kind` must be plan or facade"));
+    let kind =
+        kind.ok_or_else(|| bad("the upload has no `kind` field (plan, facade or gothic)"))?;
+    if !["plan", "facade", "gothic"].contains(&kind.as_str()) {
+        return Err(bad("`kind` must be plan, facade or gothic"));
     }
     let (client_name, bytes) = file.ok_or_else(|| bad("the upload has no `file` field"))?;
     blocking(app, "upload", move |app| {
@@ -111,7 +112,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
         // called like the plan must not replace the drawing.
         let name = app
             .store
-            .fresh_name(&upload_name(&client_name, format), kind == "facade")
+            .fresh_name(&upload_name(&client_name, format), kind != "plan")
             .map_err(err(StatusCode::CONFLICT))?;
         let mut project = app.store.load().map_err(err(StatusCode::CONFLICT))?;
         let mut files = vec![(name.clone(), bytes.to_vec())];
@@ -157,6 +158,19 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     StatusCode::CONFLICT,
                     "upload the plan drawing before the façade photos".into(),
                 ));
+            }
+            ("gothic", Some(p)) => {
+                // A Gothic façade photo (ch. 4): its elements are found and corrected in the
+                // Gothic step (serve/gothic.rs).
+                if !p.gothics.iter().any(|g| g.image == name) {
+                    p.gothics.push(GothicEntry {
+                        image: name.clone(),
+                        bbox: None,
+                        lines: None,
+                        rectified: false,
+                        elements: vec![],
+                    });
+                }
             }
             (_, Some(p)) => {
                 if !p.facades.iter().any(|f| f.image == name) {

@@ -198,6 +198,7 @@ fn check_in_progress(p: &Project) -> Result<(), integrate::project::ProjectError
         ));
     }
     complete.facades.retain(|f| mapped(&f.image));
+    complete.gothics.retain(|g| mapped(&g.image));
     Project::from_toml(&complete.to_toml()).map(|_| ())
 }
 
@@ -295,13 +296,18 @@ fn compacted(i: &toml_edit::Item) -> toml_edit::Item {
             _ => {}
         }
     }
+    // A new table keeps no position from the plain text it came from: placed by the old
+    // document's numbering, a new `[[gothic.element]]` would be written before its own
+    // `[[gothic]]` (a duplicate key); without one it follows the table written before it.
+    fn table(t: &mut toml_edit::Table) {
+        t.set_position(None);
+        t.iter_mut().for_each(|(_, i)| item(i));
+    }
     fn item(i: &mut toml_edit::Item) {
         match i {
             toml_edit::Item::Value(v) => value(v),
-            toml_edit::Item::Table(t) => t.iter_mut().for_each(|(_, i)| item(i)),
-            toml_edit::Item::ArrayOfTables(a) => a
-                .iter_mut()
-                .for_each(|t| t.iter_mut().for_each(|(_, i)| item(i))),
+            toml_edit::Item::Table(t) => table(t),
+            toml_edit::Item::ArrayOfTables(a) => a.iter_mut().for_each(table),
             toml_edit::Item::None => {}
         }
     }

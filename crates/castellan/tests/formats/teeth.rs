@@ -268,3 +268,35 @@ fn gothic_schema_refuses_unknown_kinds_and_bad_references() {
         &without(doc, "/elements/0", "v"),
     );
 }
+
+#[test]
+fn project_schema_takes_gothic_element_corrections_and_refuses_bad_ones() {
+    let text = "plan = \"plan.png\"\n[[gothic]]\nimage = \"portal.png\"\n\
+                [[gothic.element]]\npoint = [412, 300]\napex = 210.0\nwidth = 96.0\n\
+                [[gothic.element]]\npoint = [130, 320]\ndelete = true\n\
+                [[correspondence]]\nfacade = \"portal.png\"\nfacade_point = [1, 1]\n\
+                plan_points = [[1, 1]]\n";
+    let doc = toml_to_json(text, "a Gothic project");
+    assert_valid("project", "a Gothic project", &doc);
+    assert!(integrate::project::Project::from_toml(text).is_ok());
+    for (why, bad) in [
+        (
+            "an unknown key in [[gothic.element]]",
+            with_key(&doc, "/gothic/0/element/0", "top", json!(3)),
+        ),
+        (
+            "a width of 0",
+            with(&doc, "/gothic/0/element/0/width", json!(0)),
+        ),
+        ("no point", without(&doc, "/gothic/0/element/1", "point")),
+    ] {
+        assert_refused("project", why, &bad);
+    }
+    // The program refuses them too.
+    assert!(
+        integrate::project::Project::from_toml(&text.replace("width = 96.0", "top = 3")).is_err()
+    );
+    assert!(
+        integrate::project::Project::from_toml(&text.replace("width = 96.0", "width = 0")).is_err()
+    );
+}

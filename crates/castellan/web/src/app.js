@@ -5,6 +5,7 @@
 import { showModel } from './viewer.js';
 import { initPlanFixes } from './plan_fix.js';
 import { facadeFix } from './facade_fix.js';
+import { setupGothic } from './gothic_fix.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOURS = { window: '#00c853', wall: '#d500f9', background: '#ff1744', whole_window: '#00c853' };
@@ -705,6 +706,7 @@ async function refresh() {
   const facades = (p.project && p.project.facade) || [];
   select.replaceChildren(...facades.map((f) => new Option(f.image, f.image)));
   document.title = `castellan — ${p.dir}`;
+  gothic.show(p.project);
   await showPlan();
   await planFixes.load(p.project);
   // The last parse's overlays, as they were left (the page may have been reloaded).
@@ -716,6 +718,9 @@ async function refresh() {
   if (facades.length && !facades.some((f) => f.image === state.facade)) await selectFacade(facades[0].image);
   return p;
 }
+
+// The Gothic step (gothic_fix.js), sharing the page's API calls and project version.
+const gothic = setupGothic({ api, step, upload, refresh });
 
 refresh()
   .then((p) => {

@@ -10,6 +10,8 @@
 //!   window class instead of the image edges.
 //! - [`detect`]: seeds at peaks of D, conjugate-gradient MLE ([`optimise`], `argmin`),
 //!   significance test, duplicate suppression.
+//! - [`corrections`]: the user's deleted, moved and added elements (issue 22), applied between
+//!   detection and grouping ([`estimate_corrected`]).
 //! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions).
 //! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents.
 //! - [`masonry`] with [`watershed`]: element pixels removed, watershed on the rest, regions
@@ -35,6 +37,7 @@
 //! GOTHIC.json is [`GothicEstimate`] serialised (ARCHITECTURE.md contract).
 
 pub mod classes;
+pub mod corrections;
 pub mod detect;
 pub mod draw;
 pub mod dual;
@@ -57,10 +60,12 @@ use image::RgbImage;
 pub use model::{Element, GothicEstimate, Group};
 pub use params::{GothicParams, Progress};
 
+pub use corrections::{Applied, CorrectionError, ElementCorrection};
 pub use element::{ArchKind, Theta};
 pub use program::{VsgOptions, to_vsg};
 
 use crate::{FacadeError, Result};
+use corrections::Corrected;
 use detect::Candidate;
 use likelihood::{DistanceMap, fit};
 use optimise::maximise_group;
@@ -106,32 +111,94 @@ pub fn estimate_with_progress(
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<GothicEstimate> {
+    let detection = detect_elements(img, params, progress)?;
+    Ok(organise_plain(
+        &detection.dt,
+        detection.found,
+        params,
+        progress,
+    ))
+}
+
+/// The slow half of §4.2 (edges, distance transform, every seed maximised), kept so the
+/// user's corrections can be applied and the elements organised again without it.
+#[derive(Debug, Clone)]
+pub struct Detection {
+    pub dt: DistanceMap,
+    pub found: Vec<Candidate>,
+}
+
+/// Edges, distance transform and detection (§4.2) of an image.
+pub fn detect_elements(
+    img: &RgbImage,
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Detection> {
     check_size(img)?;
     progress(Progress::Edges);
     let dt = distance_map(img, params);
     let found = detect::detect_with(&dt, params, progress);
-    Ok(organise_with_progress(&dt, found, params, progress))
+    Ok(Detection { dt, found })
+}
+
+/// The estimate with the user's corrections (issue 22): applied to the detected elements,
+/// then grouping, enclosing arches and nesting as [`estimate`] does them; and what each
+/// correction did, with the element ids of the estimate.
+pub fn estimate_corrected(
+    detection: &Detection,
+    corrections: &[ElementCorrection],
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> std::result::Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
+    let corrected =
+        corrections::apply(&detection.dt, detection.found.clone(), corrections, params)?;
+    // Organising keeps the indices of the items it was given and appends enclosing arches;
+    // `resolve` keeps the ids of what it applies in step with its deletions.
+    organise_with_progress(&detection.dt, corrected, params, progress)
 }
 
 /// Grouping, joint re-estimation and enclosing arches over detected elements, up to
 /// `max_levels` rounds; then parents, depths and groups as GOTHIC.json has them.
 pub fn organise(dt: &DistanceMap, found: Vec<Candidate>, params: &GothicParams) -> GothicEstimate {
-    organise_with_progress(dt, found, params, &|_| {})
+    organise_plain(dt, found, params, &|_| {})
 }
 
-fn organise_with_progress(
+/// [`organise`] without corrections: nothing can fail.
+fn organise_plain(
     dt: &DistanceMap,
     found: Vec<Candidate>,
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> GothicEstimate {
-    let mut items: Vec<Candidate> = found;
+    match organise_with_progress(dt, Corrected::none(found), params, progress) {
+        Ok((est, _)) => est,
+        // Only a correction can fail, and there is none.
+        Err(_) => finish(dt, Vec::new(), Vec::new(), Vec::new(), params),
+    }
+}
+
+/// Issue 22: elements the user set are `pinned` — left out of the groups (a group's shared
+/// shape would move them off the user's handles), never snapped to a round arch nor replaced by
+/// an enclosing arch — and an enclosing arch over a deleted element's box is not made again.
+fn organise_with_progress(
+    dt: &DistanceMap,
+    corrected: Corrected,
+    params: &GothicParams,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> std::result::Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
+    let Corrected {
+        mut items,
+        mut pinned,
+        deleted,
+        mut applied,
+        deferred,
+    } = corrected;
     let mut group_of: Vec<Option<usize>> = vec![None; items.len()];
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
     for level in 0..params.max_levels {
         let free: Vec<usize> = (0..items.len())
-            .filter(|&i| group_of[i].is_none())
+            .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
         let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
         let clusters: Vec<Vec<usize>> =
@@ -177,22 +244,44 @@ fn organise_with_progress(
             let Some(enc) = hierarchy::enclosing(dt, &thetas, params) else {
                 continue;
             };
+            if corrections::is_deleted(&deleted, &enc.theta, params) {
+                continue;
+            }
             let same = (0..items.len())
                 .find(|&i| detect::iou(&items[i].theta, &enc.theta) >= params.duplicate_iou);
             match same {
-                Some(i) if items[i].fit.mean_distance > enc.fit.mean_distance => items[i] = enc,
+                Some(i) if !pinned[i] && items[i].fit.mean_distance > enc.fit.mean_distance => {
+                    items[i] = enc
+                }
                 Some(_) => {}
                 None => {
                     items.push(enc);
                     group_of.push(None);
+                    pinned.push(false);
                 }
             }
         }
     }
-    for c in &mut items {
-        *c = snap_round(dt, *c, params);
+    if !deferred.is_empty() {
+        corrections::resolve(
+            dt,
+            corrections::Organised {
+                items: &mut items,
+                pinned: &mut pinned,
+                group_of: &mut group_of,
+                groups: &mut groups,
+            },
+            &deferred,
+            &mut applied,
+            params,
+        )?;
     }
-    finish(dt, items, group_of, groups, params)
+    for (c, &user) in items.iter_mut().zip(&pinned) {
+        if !user {
+            *c = snap_round(dt, *c, params);
+        }
+    }
+    Ok((finish(dt, items, group_of, groups, params), applied))
 }
 
 /// Where an arc meets its jambs tangentially the springing line barely moves the contour, so
