@@ -144,7 +144,10 @@ pub fn parse_plan(project: &Project, files: &impl Files) -> Result<PlanStage, Pi
     let grey = image.to_luma8();
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
-        caption: Some("Plan labels (ch. 5)".into()),
+        caption: Some(format!(
+            "Plan labels (ch. 5) — {}",
+            plan::output::label_key_words(&parsed)
+        )),
         picture: Picture::Rgb(plan::output::overlay(&parsed, &grey)),
     };
     let how = match options.ink {
@@ -301,8 +304,9 @@ pub fn estimate_gothic_photo(
     overlays.push(Overlay {
         name: format!("overlays/{stem}_gothic.png"),
         caption: Some(format!(
-            "{}: arches, groups, nesting and stones (ch. 4)",
-            estimate.name
+            "{}: arches, groups, nesting and stones (ch. 4) — {}",
+            estimate.name,
+            facade::gothic::draw::LEGEND
         )),
         picture: Picture::Rgb(facade::gothic::draw::overlay(
             &estimate.facade,
@@ -324,7 +328,8 @@ fn lines_overlay(
         .map(|r| Overlay {
             name: format!("overlays/{stem}_lines.png"),
             caption: Some(format!(
-                "{image}: line families and vanishing points (§3.1.1)"
+                "{image}: line families and vanishing points (§3.1.1) — {}",
+                facade::rectify::OVERLAY_LEGEND
             )),
             picture: Picture::Rgb(facade::rectify::draw_overlay(photo, r)),
         })

@@ -153,6 +153,17 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
             let c = o.caption.as_deref().unwrap_or_default();
             assert!(c.contains(facade::draw::LEGEND), "{c}");
         }
+        // Issue 22: so do the line and plan overlays.
+        let c = o.caption.as_deref().unwrap_or_default();
+        if o.name.ends_with("_lines.png") {
+            assert!(c.contains(facade::rectify::OVERLAY_LEGEND), "{c}");
+        }
+        if o.name == "overlays/plan_labels.png" {
+            assert!(
+                c.contains("courtyard blue") && c.contains("tower room green"),
+                "{c}"
+            );
+        }
     }
     assert_eq!(
         r.exports.terminals,

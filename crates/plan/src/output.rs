@@ -74,6 +74,24 @@ pub fn label_key(p: &ParsedPlan) -> Vec<Entry> {
     key
 }
 
+/// The labels of [`label_key`] with their colours in words, for captions: "courtyard blue,
+/// tower room green, …".
+pub fn label_key_words(p: &ParsedPlan) -> String {
+    let mut present = [false; 11];
+    for &l in &p.labels {
+        present[usize::from(l).min(10)] = true;
+    }
+    let mut words: Vec<String> = Label::ALL
+        .iter()
+        .filter(|l| present[**l as usize])
+        .map(|l| format!("{} {}", l.words(), l.color_name()))
+        .collect();
+    if p.scale_bar.is_some() {
+        words.push("scale bar framed in magenta".into());
+    }
+    words.join(", ")
+}
+
 /// Draws `key` into a picture of `p` where it covers the least of the castle and none of the
 /// scale bar (issue 22: every overlay carries its key).
 fn draw_key(img: &mut RgbImage, p: &ParsedPlan, key: &[Entry]) -> Option<legend::Placed> {
@@ -373,6 +391,10 @@ mod tests {
         // The walls' key, smaller, goes where it covers least: its frame is drawn somewhere.
         let frame = |img: RgbImage| img.pixels().filter(|q| q.0 == [60, 60, 60]).count();
         assert!(frame(walls_overlay(&p, &grey)) > 100);
+        assert_eq!(
+            label_key_words(&p),
+            "castle surroundings dark blue, castle outer wall yellow, courtyard blue, scale bar framed in magenta"
+        );
         let text = label_colours_text();
         assert_eq!(text.lines().count(), 11);
         assert!(

@@ -135,7 +135,13 @@ fn draw_swatch(img: &mut RgbImage, swatch: Swatch, x0: u32, y0: u32, side: u32, 
                 Swatch::Line(_) => dy >= (side - px) / 2 && dy < (side - px) / 2 + px,
                 Swatch::Ring(_) => dx < px || dy < px || dx >= side - px || dy >= side - px,
             };
-            if on {
+            // A filled swatch has a grey rim, so that white (an unknown wall) shows on the
+            // pale ground.
+            let rim = matches!(swatch, Swatch::Fill(_))
+                && (dx == 0 || dy == 0 || dx == side - 1 || dy == side - 1);
+            if rim {
+                img.put_pixel(x, y, Rgb([110, 110, 110]));
+            } else if on {
                 let (Swatch::Fill(c) | Swatch::Line(c) | Swatch::Ring(c)) = swatch;
                 img.put_pixel(x, y, Rgb(c));
             }
@@ -172,8 +178,9 @@ mod tests {
         assert_eq!((x0, y0), (0, 0));
         // 2 + 5 + 2 + "wall" (15) + 2 wide, two rows of 7 less 2, padded.
         assert_eq!((x1, y1), (26, 16));
-        // The first swatch is filled in its colour, on the pale ground.
+        // The first swatch is filled in its colour inside a grey rim, on the pale ground.
         assert_eq!(img.get_pixel(4, 4), &Rgb([200, 0, 0]));
+        assert_eq!(img.get_pixel(2, 4), &Rgb([110, 110, 110]));
         assert_eq!(img.get_pixel(1, 1), &Rgb([217, 217, 217]));
         // The second swatch is a line through its middle, not a square.
         assert_eq!(img.get_pixel(4, 11), &Rgb([0, 0, 200]));

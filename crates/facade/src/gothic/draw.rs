@@ -8,6 +8,10 @@ use raster::legend::{self, Entry, Swatch};
 use super::GothicEstimate;
 use super::masonry::Masonry;
 
+/// The words of [`overlay`]'s key, for captions.
+pub const LEGEND: &str =
+    "contours red: arch, blue: nested arch, green: deeper; mortar tinted yellow-brown";
+
 /// Contour colours by nesting depth (0, 1, 2 and deeper).
 const DEPTH_COLOURS: [[u8; 3]; 3] = [[255, 30, 30], [40, 120, 255], [0, 220, 0]];
 /// Mortar's tint on a mid-grey photo, for the key.

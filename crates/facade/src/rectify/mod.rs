@@ -325,6 +325,9 @@ pub fn draw_overlay(img: &RgbImage, r: &Rectification) -> RgbImage {
     out
 }
 
+/// The words of [`draw_overlay`]'s key, for captions.
+pub const OVERLAY_LEGEND: &str = "red: the horizontal line family, blue: the vertical family, grey: other lines, green crosses: vanishing points";
+
 /// The key of [`draw_overlay`] (issue 22: every overlay carries its key).
 pub fn overlay_key() -> Vec<raster::legend::Entry> {
     use raster::legend::{Entry, Swatch};
