@@ -55,6 +55,15 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         let g = GrayImage::from_raw(model.width, model.height, labels.clone())
             .ok_or_else(|| anyhow!("label image size"))?;
         outputs.add(lp, png(&g, lp)?);
+        // Issue 22: LABELS.png is an index image; a person views LABELS.view.png.
+        let view = crate::images::view_path(lp);
+        outputs.add(
+            &view,
+            png(
+                &facade::draw::labels_view(model.width, model.height, &labels),
+                &view,
+            )?,
+        );
     }
     if let Some(pp) = &args.probabilities {
         outputs.add(pp, png(&facade::draw::probability_overlay(&img, &ll), pp)?);

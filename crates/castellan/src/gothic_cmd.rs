@@ -37,6 +37,9 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         let g = GrayImage::from_raw(m.width, m.height, m.labels.clone())
             .ok_or_else(|| anyhow!("masonry image size"))?;
         outputs.add(path, png(&g, path)?);
+        // Issue 22: MASONRY.png is an index image; a person views MASONRY.view.png.
+        let view = crate::images::view_path(path);
+        outputs.add(&view, png(&facade::gothic::draw::masonry_view(m), &view)?);
     }
     if let Some(path) = &args.overlay {
         outputs.add(
@@ -164,7 +167,8 @@ pub struct GothicArgs {
     /// Elements (Θ = [x0, y0, h, w, v] in pixels), groups and nesting as JSON.
     #[arg(short = 'o', long = "output", value_name = "GOTHIC.json")]
     pub output: PathBuf,
-    /// 8-bit masonry image: 0 not wall (elements), 1 mortar, 2 stone.
+    /// 8-bit masonry image: 0 not wall (elements), 1 mortar, 2 stone; MASONRY.view.png beside
+    /// it shows the classes in colours with a key (not wall blue, mortar yellow, stone grey).
     #[arg(long, value_name = "MASONRY.png")]
     pub masonry: Option<PathBuf>,
     /// Draw the element contours (and the mortar, with --masonry or --model) over the image.

@@ -136,9 +136,25 @@ where
         .map_err(|e| anyhow::anyhow!("cannot encode {}: {e}", path.display()))
 }
 
+/// Where the person-viewable version of an index image goes (issue 22): `LABELS.png` →
+/// `LABELS.view.png`, beside it.
+pub fn view_path(path: &Path) -> std::path::PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!("{stem}.view.png"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_view_of_an_index_image_sits_beside_it() {
+        assert_eq!(
+            view_path(Path::new("out/LABELS.png")),
+            Path::new("out/LABELS.view.png")
+        );
+        assert_eq!(view_path(Path::new("m")), Path::new("m.view.png"));
+    }
 
     #[test]
     fn png_round_trips() {

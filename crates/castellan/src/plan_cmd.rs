@@ -40,8 +40,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     .map_err(|e| anyhow!("{file}: {e}"))?;
     let elapsed = started.elapsed();
     let given = plan::scale::GivenScale::from_options(args.metres_per_pixel, args.scale_bar_metres);
-    let (model_scale, note) = plan::scale::ModelScale::decide(&parsed, given)
-        .map_err(|e| anyhow!("{file}: {e}; give --scale METRES_PER_PIXEL instead"))?;
+    let (model_scale, note) = plan::scale::ModelScale::decide(&parsed, given);
     let metres_per_pixel =
         (model_scale.units == plan::scale::Units::Metres).then_some(model_scale.units_per_pixel);
 
@@ -50,6 +49,9 @@ pub fn run(args: &PlanArgs) -> Result<()> {
     outputs.add(&args.output, serde_json::to_vec_pretty(&doc)?);
     if let Some(path) = &args.labels {
         outputs.add(path, png(&plan::output::labels_image(&parsed), path)?);
+        // Issue 22: LABELS.png is an index image; a person views LABELS.view.png.
+        let view = crate::images::view_path(path);
+        outputs.add(&view, png(&plan::output::labels_view(&parsed), &view)?);
     }
     if let Some(path) = &args.overlay {
         let over = plan::output::overlay(&parsed, &img.to_luma8());
@@ -99,12 +101,26 @@ pub fn run(args: &PlanArgs) -> Result<()> {
             eprintln!("{file}: model in plan pixels; {how}")
         }
         plan::scale::ScaleNote::Assumed(_) => {}
+        // Issue 22: a bar not found no longer stops the run; the outputs are in plan pixels.
+        plan::scale::ScaleNote::BarNotFound { metres, assumed } => eprintln!(
+            "{file}: warning: {}; give --scale METRES_PER_PIXEL, or click the bar's ends in `castellan serve` ({assumed})",
+            plan::scale::no_bar_found(metres)
+        ),
     }
     Ok(())
 }
 
+/// The label colours of the overlay and LABELS.view.png, for `castellan plan --help`.
+fn label_legend() -> String {
+    format!(
+        "Label colours (the overlay, LABELS.view.png and the report's plan overlay; each picture also carries a key for the labels it shows; LABELS.png holds the index, 0 to 10, in this order):\n{}\n  scale bar frame      magenta (230, 0, 200)",
+        plan::output::label_colours_text()
+    )
+}
+
 /// `castellan plan` flags.
 #[derive(Debug, Args)]
+#[command(after_long_help = label_legend())]
 pub struct PlanArgs {
     /// The plan drawing (PNG, JPEG or PNM).
     #[arg(required_unless_present = "batch")]
@@ -118,7 +134,8 @@ pub struct PlanArgs {
     /// (with --batch: the output folder).
     #[arg(short = 'o', long = "output", value_name = "PLAN.json")]
     pub output: PathBuf,
-    /// 8-bit image of label indices (the legend of PLAN.json).
+    /// 8-bit image of label indices (the legend of PLAN.json); LABELS.view.png beside it shows
+    /// the labels in their colours with a key (colours: see --help).
     #[arg(long, value_name = "LABELS.png")]
     pub labels: Option<PathBuf>,
     /// The vectorised walls with their fitted lines and arcs.
@@ -127,7 +144,7 @@ pub struct PlanArgs {
     /// The §5.3 extruded model as binary glTF.
     #[arg(long, value_name = "MODEL.glb")]
     pub model: Option<PathBuf>,
-    /// The drawing coloured by label.
+    /// The drawing coloured by label, with a key of the labels it shows.
     #[arg(long, value_name = "OVERLAY.png")]
     pub overlay: Option<PathBuf>,
     /// The walls as read (red) over the drawing (grey): the learned wall ink, or the rules'

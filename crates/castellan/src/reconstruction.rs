@@ -88,6 +88,10 @@ pub fn reconstruct(
     if let ScaleNote::Bar(how) = &r.scale_note {
         eprintln!("{name}: plan {how}");
     }
+    // Issue 22: what looks implausible is said, and the run still writes its outputs.
+    for w in &r.warnings {
+        eprintln!("{name}: warning: {w}");
+    }
     let mut outputs = Outputs::folder(outdir);
     for (file, bytes) in r.files()? {
         outputs.add(&outdir.join(file), bytes);

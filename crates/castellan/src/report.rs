@@ -59,6 +59,13 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
         e.scale.units.symbol(),
         e.scale.units_per_pixel
     );
+    for w in &r.warnings {
+        let _ = writeln!(
+            h,
+            "<p class=\"warning\" style=\"background:#fff3cd;border-left:4px solid #e0a800;padding:.4em .8em\"><b>Warning:</b> {}.</p>",
+            esc(&w.to_string())
+        );
+    }
     for a in &e.assumptions {
         let _ = writeln!(h, "<p><b>Assumed:</b> {}.</p>", esc(a));
     }
@@ -89,6 +96,7 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
             );
         }
     }
+    data_images(&mut h, r);
     structures_table(&mut h, e);
     let _ = writeln!(h, "</table></details><h2>Time per stage</h2><table>");
     for (k, v) in &r.stages {
@@ -96,6 +104,41 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
     }
     let _ = writeln!(h, "</table></body></html>");
     h
+}
+
+/// The index images the overlays leave out (a class number a pixel, black to the eye): each
+/// linked with the view a person reads, the same classes in colour with a key (issue 22).
+fn data_images(h: &mut String, r: &Reconstruction) {
+    let names: Vec<&str> = r
+        .overlays
+        .iter()
+        .filter(|o| o.caption.is_none() && !o.name.ends_with(".view.png"))
+        .map(|o| o.name.as_str())
+        .collect();
+    if names.is_empty() {
+        return;
+    }
+    let _ = write!(
+        h,
+        "<p>Label images for programs (a class index a pixel: 0 background, 1 wall, 2 window), each with its view in colour: "
+    );
+    let links: Vec<String> = names
+        .iter()
+        .map(|n| {
+            let view = format!("{}.view.png", n.trim_end_matches(".png"));
+            let viewable = r.overlays.iter().any(|o| o.name == view);
+            if viewable {
+                format!(
+                    "<a href=\"{0}\">{0}</a> (view: <a href=\"{1}\">{1}</a>)",
+                    esc(n),
+                    esc(&view)
+                )
+            } else {
+                format!("<a href=\"{0}\">{0}</a>", esc(n))
+            }
+        })
+        .collect();
+    let _ = writeln!(h, "{}.</p>", links.join(", "));
 }
 
 /// What the model holds, as an expert names it (issue 25): the structures by role, how high,

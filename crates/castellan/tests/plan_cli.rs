@@ -235,13 +235,16 @@ fn scale_bar_gives_metres_per_pixel_and_its_absence_is_an_error() {
         .arg(&json2)
         .args(["--scale-bar", "40"])
         .assert()
-        .failure();
+        .success();
+    // Issue 22: no bar is a warning, and the plan is written in plan pixels.
     let err = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(
-        err.contains("no_bar.png") && err.contains("no drawn scale bar"),
+        err.contains("no_bar.png: warning: no scale bar found for the 40 m given")
+            && err.contains("continuing in plan pixels; give --scale METRES_PER_PIXEL"),
         "{err}"
     );
-    assert!(!json2.exists());
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json2).unwrap()).unwrap();
+    assert!(doc["scale"].is_null(), "{}", doc["scale"]);
 }
 
 /// Issue 20: without a scale, `plan --model` and `reconstruct` took a metre differently (1/100

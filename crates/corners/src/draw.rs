@@ -1,12 +1,14 @@
 //! Figures: the corner overlay (each corner and its two asymptote directions, §2.1.3) and the
 //! plot of figure 2.4 (repeatability per image pair and detections per image, §2.2), drawn
-//! with imageproc lines and a built-in 3 × 5 pixel font, so no font file is needed.
+//! with imageproc lines and `raster::text`'s 3 × 5 pixel font, so no font file is needed.
 
 use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_rect_mut, draw_hollow_circle_mut, draw_line_segment_mut};
 use imageproc::rect::Rect;
 
 use crate::{Corner, Gray};
+use raster::legend::{Entry, Swatch};
+use raster::text::text;
 
 /// Distinct colours for plot series, IPFIT first (red, as in figure 2.4).
 pub const PALETTE: [[u8; 3]; 8] = [
@@ -21,7 +23,7 @@ pub const PALETTE: [[u8; 3]; 8] = [
 ];
 
 /// The image, dimmed to grey, with each corner as a red circle and its two asymptote
-/// directions as yellow and cyan arms of `arm` pixels from the corner. `scale` resizes the output (e.g.
+/// directions as yellow and cyan arms of `arm` pixels from the corner, with its key. `scale` resizes the output (e.g.
 /// 0.5 for documentation figures); positions are scaled with it.
 pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage {
     let scale = if scale > 0.0 && scale.is_finite() {
@@ -57,6 +59,13 @@ pub fn overlay(img: &Gray, corners: &[Corner], arm: f64, scale: f64) -> RgbImage
             Rgb([255, 40, 40]),
         );
     }
+    // Issue 22: the overlay carries its key.
+    let key = [
+        Entry::new(Swatch::Ring([255, 40, 40]), "corner"),
+        Entry::new(Swatch::Line([255, 230, 0]), "first asymptote"),
+        Entry::new(Swatch::Line([0, 230, 255]), "second asymptote"),
+    ];
+    raster::legend::draw(&mut out, &key, &|_, _| false);
     out
 }
 
@@ -68,72 +77,6 @@ pub struct Series {
     pub color: [u8; 3],
     pub repeatability: Vec<f64>,
     pub detections: Vec<f64>,
-}
-
-const GLYPHS: &[(char, [&str; 5])] = &[
-    ('0', ["###", "#.#", "#.#", "#.#", "###"]),
-    ('1', [".#.", "##.", ".#.", ".#.", "###"]),
-    ('2', ["###", "..#", "###", "#..", "###"]),
-    ('3', ["###", "..#", ".##", "..#", "###"]),
-    ('4', ["#.#", "#.#", "###", "..#", "..#"]),
-    ('5', ["###", "#..", "###", "..#", "###"]),
-    ('6', ["###", "#..", "###", "#.#", "###"]),
-    ('7', ["###", "..#", ".#.", ".#.", ".#."]),
-    ('8', ["###", "#.#", "###", "#.#", "###"]),
-    ('9', ["###", "#.#", "###", "..#", "###"]),
-    ('.', ["...", "...", "...", "...", ".#."]),
-    ('-', ["...", "...", "###", "...", "..."]),
-    ('/', ["..#", "..#", ".#.", "#..", "#.."]),
-    ('(', [".#.", "#..", "#..", "#..", ".#."]),
-    (')', [".#.", "..#", "..#", "..#", ".#."]),
-    ('A', [".#.", "#.#", "###", "#.#", "#.#"]),
-    ('B', ["##.", "#.#", "##.", "#.#", "##."]),
-    ('C', [".##", "#..", "#..", "#..", ".##"]),
-    ('D', ["##.", "#.#", "#.#", "#.#", "##."]),
-    ('E', ["###", "#..", "##.", "#..", "###"]),
-    ('F', ["###", "#..", "##.", "#..", "#.."]),
-    ('G', [".##", "#..", "#.#", "#.#", ".##"]),
-    ('H', ["#.#", "#.#", "###", "#.#", "#.#"]),
-    ('I', ["###", ".#.", ".#.", ".#.", "###"]),
-    ('J', ["..#", "..#", "..#", "#.#", ".#."]),
-    ('K', ["#.#", "#.#", "##.", "#.#", "#.#"]),
-    ('L', ["#..", "#..", "#..", "#..", "###"]),
-    ('M', ["#.#", "###", "###", "#.#", "#.#"]),
-    ('N', ["##.", "#.#", "#.#", "#.#", "#.#"]),
-    ('O', [".#.", "#.#", "#.#", "#.#", ".#."]),
-    ('P', ["##.", "#.#", "##.", "#..", "#.."]),
-    ('Q', [".#.", "#.#", "#.#", "##.", ".##"]),
-    ('R', ["##.", "#.#", "##.", "#.#", "#.#"]),
-    ('S', [".##", "#..", ".#.", "..#", "##."]),
-    ('T', ["###", ".#.", ".#.", ".#.", ".#."]),
-    ('U', ["#.#", "#.#", "#.#", "#.#", "###"]),
-    ('V', ["#.#", "#.#", "#.#", "#.#", ".#."]),
-    ('W', ["#.#", "#.#", "###", "###", "#.#"]),
-    ('X', ["#.#", "#.#", ".#.", "#.#", "#.#"]),
-    ('Y', ["#.#", "#.#", ".#.", ".#.", ".#."]),
-    ('Z', ["###", "..#", ".#.", "#..", "###"]),
-];
-
-/// Writes `text` (upper-cased; unknown characters become blanks) with its top-left corner at
-/// (x, y), each font pixel `px` × `px`. Returns the x after the text.
-pub fn text(img: &mut RgbImage, x: i32, y: i32, text: &str, px: u32, color: [u8; 3]) -> i32 {
-    let mut cx = x;
-    for ch in text.chars().flat_map(char::to_uppercase) {
-        if let Some((_, rows)) = GLYPHS.iter().find(|(c, _)| *c == ch) {
-            for (r, row) in rows.iter().enumerate() {
-                for (k, b) in row.bytes().enumerate() {
-                    if b == b'#' {
-                        let rect =
-                            Rect::at(cx + (k as u32 * px) as i32, y + (r as u32 * px) as i32)
-                                .of_size(px, px);
-                        draw_filled_rect_mut(img, rect, Rgb(color));
-                    }
-                }
-            }
-        }
-        cx += (4 * px) as i32;
-    }
-    cx
 }
 
 fn nice_max(v: f64) -> f64 {

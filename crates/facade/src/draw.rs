@@ -1,9 +1,10 @@
 //! Figures for §3.1: the façade image tinted by its pixel labels (0 background, 1 wall,
 //! 2 window; §3.1.2–3.1.7) or by the classifier's class probabilities (§3.1.4): background red,
 //! wall magenta, window green, each averaged half and half with the photo's own colour so the
-//! façade stays visible under the tint.
+//! façade stays visible under the tint. Each picture carries its key (issue 22).
 
 use image::RgbImage;
+use raster::legend::{self, Entry, Swatch};
 
 use crate::classify::{Class, LogLikelihoods};
 
@@ -13,7 +14,25 @@ const COLOURS: [[u8; 3]; 3] = [[255, 40, 40], [255, 0, 255], [0, 220, 0]];
 /// The words a caption uses for the tints.
 pub const LEGEND: &str = "green window, magenta wall, red background";
 
-/// The image tinted by label: background red, wall magenta, window green.
+/// The key of the classes `present` (indexed as [`Class::ALL`]), window first as in
+/// [`LEGEND`].
+pub fn key(present: [bool; 3]) -> Vec<Entry> {
+    [(2, "window"), (1, "wall"), (0, "background")]
+        .into_iter()
+        .filter(|&(c, _)| present[c])
+        .map(|(c, name)| Entry::new(Swatch::Fill(COLOURS[c]), name))
+        .collect()
+}
+
+fn present(labels: &[u8]) -> [bool; 3] {
+    let mut seen = [false; 3];
+    for &l in labels {
+        seen[usize::from(l).min(2)] = true;
+    }
+    seen
+}
+
+/// The image tinted by label: background red, wall magenta, window green; with its key.
 pub fn label_overlay(img: &RgbImage, labels: &[u8]) -> RgbImage {
     let mut o = img.clone();
     for (p, l) in o.pixels_mut().zip(labels) {
@@ -22,6 +41,18 @@ pub fn label_overlay(img: &RgbImage, labels: &[u8]) -> RgbImage {
             p[k] = ((u16::from(p[k]) + u16::from(c[k])) / 2) as u8;
         }
     }
+    legend::draw(&mut o, &key(present(labels)), &|_, _| false);
+    o
+}
+
+/// LABELS.view.png: a label image (0 background, 1 wall, 2 window) in the class colours with
+/// its key, as a person views it (LABELS.png itself is an index image, black to the eye).
+pub fn labels_view(width: u32, height: u32, labels: &[u8]) -> RgbImage {
+    let mut o = RgbImage::from_fn(width, height, |x, y| {
+        let l = labels.get((y * width + x) as usize).copied().unwrap_or(0);
+        image::Rgb(COLOURS[usize::from(l).min(2)])
+    });
+    legend::draw(&mut o, &key(present(labels)), &|_, _| false);
     o
 }
 
@@ -52,6 +83,8 @@ pub fn probability_overlay(img: &RgbImage, ll: &LogLikelihoods) -> RgbImage {
             p[k] = ((f32::from(p[k]) + tint) / 2.0).round() as u8;
         }
     }
+    let trained = [0, 1, 2].map(|c| maps.iter().any(|(m, _)| *m == c));
+    legend::draw(&mut o, &key(trained), &|_, _| false);
     o
 }
 
@@ -87,6 +120,26 @@ mod tests {
         assert_eq!(o.get_pixel(2, 0), &Rgb([50, 160, 50]));
         // Labels past 2 draw as windows.
         assert_eq!(o.get_pixel(3, 0), &Rgb([50, 160, 50]));
+    }
+
+    #[test]
+    fn the_overlays_and_the_label_view_carry_their_key() {
+        // A 200 × 100 façade: window on the left half, wall on the right, no background.
+        let labels: Vec<u8> = (0..200 * 100)
+            .map(|i| if i % 200 < 100 { 2 } else { 1 })
+            .collect();
+        let words = |k: Vec<Entry>| k.into_iter().map(|e| e.text).collect::<Vec<_>>();
+        assert_eq!(words(key(present(&labels))), ["window", "wall"]);
+        let img = RgbImage::from_pixel(200, 100, Rgb([100, 100, 100]));
+        let o = label_overlay(&img, &labels);
+        let v = labels_view(200, 100, &labels);
+        for pic in [&o, &v] {
+            // The key's frame at the bottom right, the picture untouched at the top left.
+            assert_eq!(pic.get_pixel(199, 99), &Rgb([60, 60, 60]));
+        }
+        assert_eq!(o.get_pixel(0, 0), &Rgb([50, 160, 50]));
+        assert_eq!(v.get_pixel(0, 0), &Rgb(COLOURS[2]));
+        assert_eq!(v.get_pixel(150, 10), &Rgb(COLOURS[1]));
     }
 
     #[test]

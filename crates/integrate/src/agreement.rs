@@ -11,6 +11,7 @@
 use plan::ParsedPlan;
 use plan::bulges::BulgeTower;
 use plan::label::Label;
+use raster::legend::{Entry, Swatch};
 use serde::Serialize;
 use vsg::shape::Tessellation;
 use vsg::tree::{Model, NodeState};
@@ -240,17 +241,30 @@ pub const OVERLAY_LEGEND: &str = "grey: built on the plan and in the model; red:
 /// The agreement as a picture at the plan's size, for the user to see what the model misses
 /// and what it adds ([`OVERLAY_LEGEND`]).
 pub fn overlay(labels: &[u8], view: &TopView) -> image::RgbImage {
-    image::RgbImage::from_fn(view.width, view.height, |x, y| {
+    const BOTH: [u8; 3] = [150, 150, 150];
+    const PLAN_ONLY: [u8; 3] = [220, 40, 40];
+    const MODEL_ONLY: [u8; 3] = [40, 90, 230];
+    let colour = |x: u32, y: u32| {
         let i = (y * view.width + x) as usize;
         let built = labels.get(i).is_some_and(|&l| is_built(l));
         let covered = view.owner[i] != TopView::EMPTY;
-        image::Rgb(match (built, covered) {
-            (true, true) => [150, 150, 150],
-            (true, false) => [220, 40, 40],
-            (false, true) => [40, 90, 230],
+        match (built, covered) {
+            (true, true) => BOTH,
+            (true, false) => PLAN_ONLY,
+            (false, true) => MODEL_ONLY,
             (false, false) => [255, 255, 255],
-        })
-    })
+        }
+    };
+    let mut img =
+        image::RgbImage::from_fn(view.width, view.height, |x, y| image::Rgb(colour(x, y)));
+    // Issue 22: the key in the corner with the least of either.
+    let key = [
+        Entry::new(Swatch::Fill(BOTH), "plan and model"),
+        Entry::new(Swatch::Fill(PLAN_ONLY), "plan only"),
+        Entry::new(Swatch::Fill(MODEL_ONLY), "model only"),
+    ];
+    raster::legend::draw(&mut img, &key, &|x, y| colour(x, y) != [255, 255, 255]);
+    img
 }
 
 /// The model seen from above at `plan`'s grid, through the estimate's scale and structure ids.

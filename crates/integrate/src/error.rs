@@ -1,7 +1,5 @@
 //! Why integration failed (ch. 6): each error names the PROJECT.toml entry at fault.
 
-use plan::scale::NoScaleBar;
-
 /// Why integration failed; each names the PROJECT.toml entry at fault.
 #[derive(Debug, thiserror::Error)]
 pub enum IntegrateError {
@@ -11,11 +9,6 @@ pub enum IntegrateError {
         step: String,
         message: String,
     },
-    #[error(
-        "scale_bar = {}: {why} in plan = \"{plan}\"; give scale = METRES_PER_PIXEL instead",
-        why.metres
-    )]
-    NoScaleBar { plan: String, why: NoScaleBar },
     /// A `[[structure]]` correction that cannot apply; the message names the entry.
     #[error("{0}")]
     Correction(String),

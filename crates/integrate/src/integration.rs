@@ -65,13 +65,9 @@ pub struct Integrated {
 pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
     let plan = inputs.plan;
     let mut assumptions = Vec::new();
-    let (frame, scale_note) =
-        ModelScale::decide(plan, inputs.scale).map_err(|why| IntegrateError::NoScaleBar {
-            plan: inputs.plan_image.to_string(),
-            why,
-        })?;
-    if let ScaleNote::Assumed(why) = &scale_note {
-        assumptions.push(why.clone());
+    let (frame, scale_note) = ModelScale::decide(plan, inputs.scale);
+    if let Some(why) = scale_note.assumption() {
+        assumptions.push(why.to_string());
     }
     let mut structures = crate::structures::from_plan(plan, inputs.plan_image, &frame);
     let fixed = crate::corrections::targets(&structures, inputs.structure_fixes, plan, &frame)

@@ -15,6 +15,8 @@
 //!   names through the caller's [`pipeline::Files`]: the commands are adapters over it.
 //! - [`agreement::measure`] compares the model seen from above with the plan's built area
 //!   (issue 25): IoU, precision, recall, rooms and towers present; stats.json carries it.
+//! - [`plausibility`] warns of nonsense that ran without error (issue 22): no walls, most of
+//!   the drawing unbuilt, a façade making a needle, a castle 2 m or 20 km across.
 //! - [`synth`] draws a synthetic project (plan and perspective façade photos with known answers).
 //!
 //! ```
@@ -50,6 +52,7 @@ mod integration;
 pub mod library;
 pub mod photo;
 pub mod pipeline;
+pub mod plausibility;
 pub mod program;
 pub mod project;
 pub mod structures;

@@ -162,7 +162,10 @@ pub fn corrected_stage(
     parsed.warnings.extend(notes);
     let overlay = Overlay {
         name: "overlays/plan_labels.png".into(),
-        caption: Some("Plan labels (ch. 5)".into()),
+        caption: Some(format!(
+            "Plan labels (ch. 5) — {}",
+            plan::output::label_key_words(&parsed)
+        )),
         picture: Picture::Rgb(plan::output::overlay(&parsed, grey)),
     };
     let how = match ink {
@@ -275,11 +278,18 @@ fn facade_overlays(e: &FacadeEstimate, photo: &RgbImage) -> Vec<Overlay> {
         )),
         picture: Picture::Rgb(facade::draw::label_overlay(&e.rectified, &labels)),
     });
+    // Issue 22: the index image a program reads, and its view a person reads.
+    let view = facade::draw::labels_view(e.model.width, e.model.height, &labels);
     if let Some(grey) = GrayImage::from_raw(e.model.width, e.model.height, labels) {
         out.push(Overlay {
             name: format!("overlays/{stem}_labels.png"),
             caption: None,
             picture: Picture::Grey(grey),
+        });
+        out.push(Overlay {
+            name: format!("overlays/{stem}_labels.view.png"),
+            caption: None,
+            picture: Picture::Rgb(view),
         });
     }
     out
@@ -321,8 +331,9 @@ pub fn estimate_gothic_photo(
     overlays.push(Overlay {
         name: format!("overlays/{stem}_gothic.png"),
         caption: Some(format!(
-            "{}: arches, groups, nesting and stones (ch. 4)",
-            estimate.name
+            "{}: arches, groups, nesting and stones (ch. 4) — {}",
+            estimate.name,
+            facade::gothic::draw::LEGEND
         )),
         picture: Picture::Rgb(facade::gothic::draw::overlay(
             &estimate.facade,
@@ -344,7 +355,8 @@ fn lines_overlay(
         .map(|r| Overlay {
             name: format!("overlays/{stem}_lines.png"),
             caption: Some(format!(
-                "{image}: line families and vanishing points (§3.1.1)"
+                "{image}: line families and vanishing points (§3.1.1) — {}",
+                facade::rectify::OVERLAY_LEGEND
             )),
             picture: Picture::Rgb(facade::rectify::draw_overlay(photo, r)),
         })
@@ -388,6 +400,8 @@ pub struct Reconstruction {
     /// The model seen from above against the plan's built area (issue 25; stats.json's
     /// `agreement`).
     pub agreement: crate::agreement::Agreement,
+    /// What looks implausible, with the fix (issue 22): the commands print it, the report shows it.
+    pub warnings: Vec<crate::plausibility::Warning>,
     /// Milliseconds per stage, in order (Gothic only when the project has Gothic photos).
     pub stages: Vec<(Stage, f64)>,
 }
@@ -518,6 +532,17 @@ pub fn reconstruct(
     let parsed = &plan_stage.parsed;
     let agreement = crate::agreement::compare(&parsed.labels, &parsed.bulge_towers, &view, &ids);
     exports.stats["agreement"] = agreement.summary();
+    let (units, per_pixel) = (estimate.scale.units, estimate.scale.units_per_pixel);
+    let mut warnings = crate::plausibility::plan_warnings(
+        parsed,
+        &project.plan,
+        &integrated.scale_note,
+        units,
+        per_pixel,
+    );
+    warnings.extend(crate::plausibility::model_warnings(
+        parsed, &estimate, &agreement,
+    ));
     overlays.push(Overlay {
         name: "overlays/plan_model.png".into(),
         caption: Some(format!(
@@ -555,6 +580,7 @@ pub fn reconstruct(
         overlays,
         exports,
         agreement,
+        warnings,
         stages,
     })
 }

@@ -118,6 +118,7 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
         "overlays/keep_south_near_pixels.png",
         "overlays/keep_south_near_facade.png",
         "overlays/keep_south_near_labels.png",
+        "overlays/keep_south_near_labels.view.png",
         "overlays/keep_south_far_facade.png",
         "plan.svg",
         "model.vsg",
@@ -133,19 +134,35 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
             "{expected} in {names:?}"
         );
     }
-    // Every overlay the report shows has a legend naming its photo; the label image has none.
+    // Every overlay the report shows has a legend naming its photo; the label image and its
+    // view (issue 22: the classes in colour with a key, linked from the report) have none.
     for o in &r.overlays {
         match &o.caption {
             Some(c) if o.name.contains("keep_south_far") => {
                 assert!(c.starts_with("keep_south_far.png: "), "{c}")
             }
             Some(_) => {}
-            None => assert!(o.name.ends_with("_labels.png"), "{}", o.name),
+            None => assert!(
+                o.name.ends_with("_labels.png") || o.name.ends_with("_labels.view.png"),
+                "{}",
+                o.name
+            ),
         }
         // The colour overlays of the façade stage say which colour is which class.
         if o.name.ends_with("_pixels.png") || o.name.ends_with("_facade.png") {
             let c = o.caption.as_deref().unwrap_or_default();
             assert!(c.contains(facade::draw::LEGEND), "{c}");
+        }
+        // Issue 22: so do the line and plan overlays.
+        let c = o.caption.as_deref().unwrap_or_default();
+        if o.name.ends_with("_lines.png") {
+            assert!(c.contains(facade::rectify::OVERLAY_LEGEND), "{c}");
+        }
+        if o.name == "overlays/plan_labels.png" {
+            assert!(
+                c.contains("courtyard blue") && c.contains("tower room green"),
+                "{c}"
+            );
         }
     }
     assert_eq!(

@@ -68,6 +68,28 @@ impl Label {
         }
     }
 
+    /// The colour in words, for keys in text (`castellan plan --help`, docs/formats.md).
+    pub fn color_name(self) -> &'static str {
+        match self {
+            Label::CastleSurroundings => "dark blue",
+            Label::CastleOuterWall => "yellow",
+            Label::Courtyard => "blue",
+            Label::TowerWall => "orange",
+            Label::TowerRoom => "green",
+            Label::GreatHall => "light blue",
+            Label::GreatHallWall => "pink",
+            Label::Chapel => "cyan",
+            Label::ChapelWall => "red",
+            Label::UnknownRoom => "light green",
+            Label::UnknownWall => "white",
+        }
+    }
+
+    /// The name as a key writes it ("tower room").
+    pub fn words(self) -> String {
+        self.name().replace('_', " ")
+    }
+
     /// An open space a building encloses: a tower room, great hall, chapel or unknown room.
     pub fn is_room(self) -> bool {
         matches!(

@@ -3,6 +3,7 @@
 //! their fitted lines and arcs. No files here: the binary encodes and writes them.
 
 use image::{GrayImage, Luma, Rgb, RgbImage};
+use raster::legend::{self, Entry, Swatch};
 use serde_json::{Value, json};
 
 use crate::ParsedPlan;
@@ -55,9 +56,83 @@ pub fn labels_image(p: &ParsedPlan) -> GrayImage {
     })
 }
 
+/// The key of the label pictures: each label the plan has, in legend order, and the scale
+/// bar's frame when one was found.
+pub fn label_key(p: &ParsedPlan) -> Vec<Entry> {
+    let mut present = [false; 11];
+    for &l in &p.labels {
+        present[usize::from(l).min(10)] = true;
+    }
+    let mut key: Vec<Entry> = Label::ALL
+        .iter()
+        .filter(|l| present[**l as usize])
+        .map(|l| Entry::new(Swatch::Fill(l.color()), l.words()))
+        .collect();
+    if p.scale_bar.is_some() {
+        key.push(Entry::new(Swatch::Ring(SCALE_BAR_COLOUR), "scale bar"));
+    }
+    key
+}
+
+/// The labels of [`label_key`] with their colours in words, for captions: "courtyard blue,
+/// tower room green, …".
+pub fn label_key_words(p: &ParsedPlan) -> String {
+    let mut present = [false; 11];
+    for &l in &p.labels {
+        present[usize::from(l).min(10)] = true;
+    }
+    let mut words: Vec<String> = Label::ALL
+        .iter()
+        .filter(|l| present[**l as usize])
+        .map(|l| format!("{} {}", l.words(), l.color_name()))
+        .collect();
+    if p.scale_bar.is_some() {
+        words.push("scale bar framed in magenta".into());
+    }
+    words.join(", ")
+}
+
+/// Draws `key` into a picture of `p` where it covers the least of the castle and none of the
+/// scale bar (issue 22: every overlay carries its key).
+fn draw_key(img: &mut RgbImage, p: &ParsedPlan, key: &[Entry]) -> Option<legend::Placed> {
+    let outside = Label::CastleSurroundings as u8;
+    let frame = p
+        .scale_bar
+        .as_ref()
+        .map(|b| scale_bar_frame(b, p.width, p.height));
+    legend::draw(img, key, &|x, y| {
+        p.labels[(y * p.width + x) as usize] != outside
+            || frame
+                .is_some_and(|[x0, y0, x1, y1]| (x0..=x1).contains(&x) && (y0..=y1).contains(&y))
+    })
+}
+
+/// LABELS.view.png: the label colours alone, with the key — LABELS.png (an index image, dark
+/// to a person) as a person views it.
+pub fn labels_view(p: &ParsedPlan) -> RgbImage {
+    let mut img = RgbImage::from_fn(p.width, p.height, |x, y| {
+        Rgb(Label::ALL[usize::from(p.labels[(y * p.width + x) as usize]).min(10)].color())
+    });
+    draw_key(&mut img, p, &label_key(p));
+    img
+}
+
+/// The label colours in words, one label a line ("tower_room: green"), for `--help` and
+/// the docs.
+pub fn label_colours_text() -> String {
+    Label::ALL
+        .iter()
+        .map(|l| {
+            let [r, g, b] = l.color();
+            format!("  {:<20} {} ({r}, {g}, {b})", l.name(), l.color_name())
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The drawing in grey under the label colours: walls opaque, open spaces half-transparent.
 /// A scale bar found on the sheet is framed in [`SCALE_BAR_COLOUR`], so the user can check
-/// what the metres hang on.
+/// what the metres hang on. The key ([`label_key`]) sits in the emptiest corner.
 pub fn overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
     let mut img = RgbImage::from_fn(p.width, p.height, |x, y| {
         let l = Label::ALL[p.labels[(y * p.width + x) as usize] as usize];
@@ -79,6 +154,7 @@ pub fn overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
             }
         }
     }
+    draw_key(&mut img, p, &label_key(p));
     img
 }
 
@@ -89,7 +165,7 @@ pub const WALL_INK_COLOUR: [u8; 3] = [220, 30, 30];
 /// rules) in [`WALL_INK_COLOUR`] over the drawing in grey: what the user judges and strokes
 /// against (legend: [`WALLS_LEGEND`]).
 pub fn walls_overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
-    RgbImage::from_fn(p.width, p.height, |x, y| {
+    let mut img = RgbImage::from_fn(p.width, p.height, |x, y| {
         let g = f64::from(grey.get_pixel(x, y)[0]);
         if p.walls.data[(y * p.width + x) as usize] != 0 {
             Rgb(WALL_INK_COLOUR.map(|v| (0.75 * f64::from(v) + 0.25 * g).round() as u8))
@@ -97,7 +173,13 @@ pub fn walls_overlay(p: &ParsedPlan, grey: &GrayImage) -> RgbImage {
             let v = (0.55 * g + 0.45 * 255.0).round() as u8;
             Rgb([v, v, v])
         }
-    })
+    });
+    let key = [
+        Entry::new(Swatch::Fill(WALL_INK_COLOUR), "wall as read"),
+        Entry::new(Swatch::Fill([200, 200, 200]), "drawing, not wall"),
+    ];
+    draw_key(&mut img, p, &key);
+    img
 }
 
 /// The legend of [`walls_overlay`].
@@ -272,10 +354,53 @@ mod tests {
                 .count()
         };
         let with = plan_with_bar(Some(BAR));
-        // Frame 46..=154 × 132..=148: two rows of 109 and two columns of 17, corners once.
-        assert_eq!(framed(&with), 2 * 109 + 2 * 17 - 4);
+        // Frame 46..=154 × 132..=148: two rows of 109 and two columns of 17, corners once;
+        // and the key's swatch of it, a 5 × 5 ring (16 pixels).
+        assert_eq!(framed(&with), 2 * 109 + 2 * 17 - 4 + 16);
         assert_eq!(overlay(&with, &grey).get_pixel(46, 140).0, SCALE_BAR_COLOUR);
         assert_eq!(framed(&plan_with_bar(None)), 0);
+    }
+
+    #[test]
+    fn the_overlays_carry_their_key_off_the_castle_and_the_view_is_the_label_colours() {
+        let p = plan_with_bar(Some(BAR));
+        let key = label_key(&p);
+        let words: Vec<&str> = key.iter().map(|e| e.text.as_str()).collect();
+        // The parsed square: surroundings, its wall, the courtyard; and the bar.
+        assert_eq!(
+            words,
+            [
+                "castle surroundings",
+                "castle outer wall",
+                "courtyard",
+                "scale bar"
+            ]
+        );
+        let grey = GrayImage::from_pixel(200, 160, Luma([255]));
+        // The key goes to a top corner (the bottom has the bar), the one that covers the least
+        // of the castle, the same in every picture of the plan.
+        let placed = draw_key(&mut RgbImage::new(200, 160), &p, &key);
+        assert_eq!(placed, Some([0, 0, 86, 30]));
+        let framed_top_left = |img: &RgbImage| {
+            img.get_pixel(0, 0).0 == [60, 60, 60] && img.get_pixel(0, 159).0 != [60, 60, 60]
+        };
+        assert!(framed_top_left(&overlay(&p, &grey)));
+        let v = labels_view(&p);
+        assert!(framed_top_left(&v));
+        assert_eq!(v.get_pixel(100, 70).0, Label::Courtyard.color());
+        // The walls' key, smaller, goes where it covers least: its frame is drawn somewhere.
+        let frame = |img: RgbImage| img.pixels().filter(|q| q.0 == [60, 60, 60]).count();
+        assert!(frame(walls_overlay(&p, &grey)) > 100);
+        assert_eq!(
+            label_key_words(&p),
+            "castle surroundings dark blue, castle outer wall yellow, courtyard blue, scale bar framed in magenta"
+        );
+        let text = label_colours_text();
+        assert_eq!(text.lines().count(), 11);
+        assert!(
+            text.contains("tower_room           green (30, 170, 60)"),
+            "{text}"
+        );
     }
 
     #[test]

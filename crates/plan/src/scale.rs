@@ -108,14 +108,28 @@ pub enum ScaleNote {
     Bar(String),
     /// Nothing was given: an assumption, to be reported.
     Assumed(String),
+    /// The user gave the bar's length (`scale_bar`, `--scale-bar`) but no bar was found in the
+    /// drawing: the model stays in plan pixels with a metre assumed as without a scale
+    /// (`assumed`, in words), and the caller warns (issue 22: a missing bar used to stop the
+    /// run with nothing written).
+    BarNotFound { metres: f64, assumed: String },
 }
 
-/// `scale_bar` was given but no bar was found in the drawing.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("no drawn scale bar found ({LOOKED_FOR})")]
-pub struct NoScaleBar {
-    /// The length the user gave the bar, in metres.
-    pub metres: f64,
+impl ScaleNote {
+    /// The assumption made, if the scale was not given or read (for estimate.json's
+    /// `assumptions`).
+    pub fn assumption(&self) -> Option<&str> {
+        match self {
+            ScaleNote::Assumed(why) | ScaleNote::BarNotFound { assumed: why, .. } => Some(why),
+            ScaleNote::Given | ScaleNote::Bar(_) => None,
+        }
+    }
+}
+
+/// What a user reads when the bar they named is not in the drawing: what was looked for and
+/// what happens instead (the caller adds where to give the scale).
+pub fn no_bar_found(metres: f64) -> String {
+    format!("no scale bar found for the {metres} m given ({LOOKED_FOR}); continuing in plan pixels")
 }
 
 impl ModelScale {
@@ -132,36 +146,45 @@ impl ModelScale {
     /// a given scale or the drawn bar makes the model metric; without either the model stays
     /// in plan pixels and the outer walls' median thickness is taken as
     /// [`ASSUMED_OUTER_WALL_METRES`] (without outer walls, a metre is 1/100 of the drawing's
-    /// larger side).
-    pub fn decide(
-        plan: &ParsedPlan,
-        given: GivenScale,
-    ) -> Result<(ModelScale, ScaleNote), NoScaleBar> {
+    /// larger side). A bar asked for but not found falls back to plan pixels in the same way,
+    /// with [`ScaleNote::BarNotFound`] for the caller to warn (issue 22).
+    pub fn decide(plan: &ParsedPlan, given: GivenScale) -> (ModelScale, ScaleNote) {
         match given {
-            GivenScale::MetresPerPixel(s) => Ok((ModelScale::metric(s), ScaleNote::Given)),
-            GivenScale::ScaleBarMetres(metres) => {
-                let bar = plan.scale_bar.ok_or(NoScaleBar { metres })?;
-                let s = bar.metres_per_pixel(metres);
-                Ok((
-                    ModelScale::metric(s),
-                    ScaleNote::Bar(format!(
-                        "scale bar {} = {metres} m: {s:.4} m per pixel",
-                        bar.describe()
-                    )),
-                ))
-            }
+            GivenScale::MetresPerPixel(s) => (ModelScale::metric(s), ScaleNote::Given),
+            GivenScale::ScaleBarMetres(metres) => match plan.scale_bar {
+                Some(bar) => {
+                    let s = bar.metres_per_pixel(metres);
+                    (
+                        ModelScale::metric(s),
+                        ScaleNote::Bar(format!(
+                            "scale bar {} = {metres} m: {s:.4} m per pixel",
+                            bar.describe()
+                        )),
+                    )
+                }
+                None => {
+                    let (frame, assumed) = ModelScale::assumed(plan);
+                    (frame, ScaleNote::BarNotFound { metres, assumed })
+                }
+            },
             GivenScale::Unknown => {
-                let (units_per_metre, why) = assumed_pixels_per_metre(plan);
-                Ok((
-                    ModelScale {
-                        units: Units::Pixels,
-                        units_per_pixel: 1.0,
-                        units_per_metre,
-                    },
-                    ScaleNote::Assumed(why),
-                ))
+                let (frame, why) = ModelScale::assumed(plan);
+                (frame, ScaleNote::Assumed(why))
             }
         }
+    }
+
+    /// A model in plan pixels with a metre assumed from the walls, and the assumption in words.
+    fn assumed(plan: &ParsedPlan) -> (ModelScale, String) {
+        let (units_per_metre, why) = assumed_pixels_per_metre(plan);
+        (
+            ModelScale {
+                units: Units::Pixels,
+                units_per_pixel: 1.0,
+                units_per_metre,
+            },
+            why,
+        )
     }
 }
 
@@ -234,7 +257,7 @@ mod tests {
     #[test]
     fn a_given_scale_makes_a_metric_model() {
         let p = plan_with_outer_walls(&[5.0]);
-        let (s, note) = ModelScale::decide(&p, GivenScale::MetresPerPixel(0.25)).unwrap();
+        let (s, note) = ModelScale::decide(&p, GivenScale::MetresPerPixel(0.25));
         assert_eq!(s, ModelScale::metric(0.25));
         assert_eq!(s.units, Units::Metres);
         assert_eq!(note, ScaleNote::Given);
@@ -243,7 +266,7 @@ mod tests {
     #[test]
     fn without_a_scale_the_median_outer_wall_is_two_and_a_half_metres() {
         let p = plan_with_outer_walls(&[4.0, 5.0, 100.0]);
-        let (s, note) = ModelScale::decide(&p, GivenScale::Unknown).unwrap();
+        let (s, note) = ModelScale::decide(&p, GivenScale::Unknown);
         assert_eq!(s.units, Units::Pixels);
         assert_eq!(s.units_per_pixel, 1.0);
         assert_eq!(s.units_per_metre, 2.0); // 5 px / 2.5 m
@@ -253,17 +276,24 @@ mod tests {
     #[test]
     fn without_a_scale_or_outer_walls_a_metre_is_a_hundredth_of_the_drawing() {
         let p = plan_with_outer_walls(&[]);
-        let (s, _) = ModelScale::decide(&p, GivenScale::Unknown).unwrap();
+        let (s, _) = ModelScale::decide(&p, GivenScale::Unknown);
         assert_eq!(s.units_per_metre, 4.0);
     }
 
     #[test]
-    fn a_scale_bar_without_a_bar_in_the_drawing_is_an_error_and_with_one_gives_metres() {
-        let mut p = plan_with_outer_walls(&[]);
-        assert_eq!(
-            ModelScale::decide(&p, GivenScale::ScaleBarMetres(30.0)),
-            Err(NoScaleBar { metres: 30.0 })
-        );
+    fn a_scale_bar_not_in_the_drawing_falls_back_to_pixels_and_with_one_gives_metres() {
+        let mut p = plan_with_outer_walls(&[5.0]);
+        // Issue 22: no bar is a warning, not an error: plan pixels with the walls' metre.
+        let (s, note) = ModelScale::decide(&p, GivenScale::ScaleBarMetres(30.0));
+        assert_eq!(s, ModelScale::decide(&p, GivenScale::Unknown).0);
+        assert_eq!((s.units, s.units_per_metre), (Units::Pixels, 2.0));
+        let ScaleNote::BarNotFound { metres, assumed } = &note else {
+            panic!("{note:?}")
+        };
+        assert_eq!(*metres, 30.0);
+        assert!(assumed.contains("5.0 px"), "{assumed}");
+        assert_eq!(note.assumption(), Some(assumed.as_str()));
+        assert!(no_bar_found(30.0).starts_with("no scale bar found for the 30 m given ("));
         p.scale_bar = Some(ScaleBar {
             x0: 10,
             y0: 20,
@@ -271,8 +301,9 @@ mod tests {
             y1: 20,
             length_px: 100,
         });
-        let (s, note) = ModelScale::decide(&p, GivenScale::ScaleBarMetres(30.0)).unwrap();
+        let (s, note) = ModelScale::decide(&p, GivenScale::ScaleBarMetres(30.0));
         assert_eq!(s, ModelScale::metric(0.3));
+        assert_eq!(note.assumption(), None);
         assert!(matches!(note, ScaleNote::Bar(w) if w.contains("100 px = 30 m")));
     }
 

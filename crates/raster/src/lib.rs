@@ -7,12 +7,15 @@
 //! - [`components`]: connected components by flood fill, with sizes and bounding boxes.
 //! - [`morphology`]: binary morphology built on imageproc's (openings, top-hats, distances to
 //!   the background).
+//! - [`text`] and [`legend`]: a 3 × 5 pixel font and the key every overlay carries (issue 22).
 //!
 //! The corner detector's edges (§2.1.1: Gaussian smoothing, central differences, Canny
 //! thinning) are the dissertation's own algorithm and stay in `corners::edge`.
 
 pub mod components;
 pub mod edges;
+pub mod legend;
 #[cfg(test)]
 mod literal;
 pub mod morphology;
+pub mod text;

@@ -191,8 +191,7 @@ fn check_structures(p: &Project, parsed: &plan::ParsedPlan) -> Result<(), ApiErr
         return Ok(());
     }
     let refuse = |m: String| ApiError(StatusCode::UNPROCESSABLE_ENTITY, m);
-    let (frame, _) = plan::scale::ModelScale::decide(parsed, p.given_scale())
-        .map_err(|why| refuse(format!("scale_bar = {}: {why}", why.metres)))?;
+    let (frame, _) = plan::scale::ModelScale::decide(parsed, p.given_scale());
     let mut structures = integrate::structures::from_plan(parsed, &p.plan, &frame);
     let targets = integrate::corrections::targets(&structures, &p.structure_fixes, parsed, &frame)
         .map_err(refuse)?;

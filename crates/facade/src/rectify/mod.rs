@@ -269,7 +269,7 @@ pub fn rectify_with_lines(
 
 /// Overlay of figure 3.2: horizontal family red, vertical family blue, others grey, and each
 /// vanishing point that falls within three image sizes of the image as a green cross (with lines
-/// from the segments towards it).
+/// from the segments towards it); with its key ([`overlay_key`]).
 pub fn draw_overlay(img: &RgbImage, r: &Rectification) -> RgbImage {
     use imageproc::drawing::{draw_cross_mut, draw_line_segment_mut};
     let mut out = img.clone();
@@ -321,7 +321,22 @@ pub fn draw_overlay(img: &RgbImage, r: &Rectification) -> RgbImage {
             }
         }
     }
+    raster::legend::draw(&mut out, &overlay_key(), &|_, _| false);
     out
+}
+
+/// The words of [`draw_overlay`]'s key, for captions.
+pub const OVERLAY_LEGEND: &str = "red: the horizontal line family, blue: the vertical family, grey: other lines, green crosses: vanishing points";
+
+/// The key of [`draw_overlay`] (issue 22: every overlay carries its key).
+pub fn overlay_key() -> Vec<raster::legend::Entry> {
+    use raster::legend::{Entry, Swatch};
+    vec![
+        Entry::new(Swatch::Line([255, 40, 40]), "horizontal lines"),
+        Entry::new(Swatch::Line([40, 120, 255]), "vertical lines"),
+        Entry::new(Swatch::Line([150, 150, 150]), "other lines"),
+        Entry::new(Swatch::Fill([0, 255, 0]), "vanishing point"),
+    ]
 }
 
 #[cfg(test)]

@@ -1,0 +1,559 @@
+//! Plausibility checks (issue 22): a reconstruction that "worked" can still be nonsense — a
+//! plan read with no walls, most of the drawing's ink left unbuilt, a façade photo that makes
+//! its structure a needle, a scale that makes the castle a doll's house or a city. None of
+//! this is in the dissertation (ch. 5–6 assume a plan and photos of the castle at hand); these
+//! checks only warn, naming what looks wrong and the fix, and the run goes on (exit 0).
+//! Pure: the plan, the estimate and the plan–model agreement in, typed warnings out.
+
+use plan::ParsedPlan;
+use plan::label::Label;
+use plan::scale::{ScaleNote, Units};
+
+use crate::agreement::Agreement;
+use crate::estimate::{Estimate, Footprint, Role, Source, Structure};
+
+/// Below this share of the plan's built area in the model, most of the drawing's ink was left
+/// unbuilt (`agreement`'s recall).
+pub const MIN_RECALL: f64 = 0.5;
+/// A structure with a mapped façade taller than this many times its footprint's larger
+/// side is a needle: the photo shows another building, or a tower mapped onto a wall.
+pub const MAX_HEIGHT_OVER_WIDTH: f64 = 4.0;
+/// A structure a façade made taller than this many times the tallest structure around it
+/// that no photo measured.
+pub const MAX_OVER_SURROUNDINGS: f64 = 3.0;
+/// Castles span 10 m (a tower house) to 2 km (a town wall) across; a given scale outside is
+/// more likely a typo or a bar read at the wrong length.
+pub const CASTLE_METRES: std::ops::RangeInclusive<f64> = 10.0..=2000.0;
+
+/// What looks wrong. [`std::fmt::Display`] says what and how to fix it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Warning {
+    /// The plan parser read no wall (no edge of the wall graph).
+    NoWalls { plan: String },
+    /// Walls were read but no structure was built from them.
+    NoStructures { plan: String },
+    /// The model covers less than [`MIN_RECALL`] of the plan's built area.
+    InkLeftUnbuilt { plan: String, recall: f64 },
+    /// A structure with a mapped façade is taller than [`MAX_HEIGHT_OVER_WIDTH`] × its width.
+    Needle {
+        structure: String,
+        photos: String,
+        height: f64,
+        width: f64,
+    },
+    /// A structure with a mapped façade is taller than [`MAX_OVER_SURROUNDINGS`] × the tallest
+    /// structure around it that no photo measured.
+    TowersOver {
+        structure: String,
+        photos: String,
+        height: f64,
+        tallest_around: f64,
+    },
+    /// With the scale given or read, the castle's built area spans less than 10 m or more than
+    /// 2 km.
+    ImplausibleSize {
+        plan: String,
+        metres_across: f64,
+        metres_per_pixel: f64,
+    },
+    /// `scale_bar` was given but no bar was found: the model is in plan pixels.
+    ScaleBarNotFound { plan: String, metres: f64 },
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Warning::NoWalls { plan } => write!(
+                f,
+                "no walls were read from {plan}: is it a castle plan? Look at overlays/plan_walls.png; try ink = \"rules\" (or the other way round), clean the drawing in `castellan serve` (erase text and hatching, paint the walls), or give a cleaner drawing"
+            ),
+            Warning::NoStructures { plan } => write!(
+                f,
+                "walls were read from {plan} but no structure was built from them: look at overlays/plan_labels.png; the walls may not close a courtyard or rooms — clean the drawing in `castellan serve` (join broken walls with the wall brush) or try ink = \"rules\""
+            ),
+            Warning::InkLeftUnbuilt { plan, recall } => write!(
+                f,
+                "only {:.0} % of {plan}'s built area (walls, towers, rooms) is in the model: most of the drawing was left unbuilt (red in overlays/plan_model.png); check overlays/plan_labels.png for walls read as surroundings or courtyard, clean the drawing in `castellan serve`, or try ink = \"rules\"",
+                100.0 * recall
+            ),
+            Warning::Needle {
+                structure,
+                photos,
+                height,
+                width,
+            } => write!(
+                f,
+                "{structure} is {:.1} times taller than wide ({height:.1} high, {width:.1} across) with the façade of {photos}: does the photo show this structure? Check its [[correspondence]] points (plan_points on the right structure, facade_point on the façade) and the façade's bbox",
+                height / width
+            ),
+            Warning::TowersOver {
+                structure,
+                photos,
+                height,
+                tallest_around,
+            } => write!(
+                f,
+                "{structure} is {height:.1} high with the façade of {photos}, {:.1} times the tallest structure around it ({tallest_around:.1}): does the photo show this structure, at this scale? Check its [[correspondence]] and the photo's scale",
+                height / tallest_around
+            ),
+            Warning::ImplausibleSize {
+                plan,
+                metres_across,
+                metres_per_pixel,
+            } => write!(
+                f,
+                "at {metres_per_pixel} m per pixel the castle of {plan} is {metres_across:.1} m across (castles span {} m to {} m): check scale (metres per pixel, not pixels per metre) or scale_bar (the bar's length in metres)",
+                CASTLE_METRES.start(),
+                CASTLE_METRES.end()
+            ),
+            Warning::ScaleBarNotFound { plan, metres } => write!(
+                f,
+                "scale_bar = {metres}: {} in plan = \"{plan}\" — give scale (metres per pixel) instead, or click the bar's two ends in `castellan serve`",
+                plan::scale::no_bar_found(*metres)
+            ),
+        }
+    }
+}
+
+/// The checks on the plan alone (what `castellan plan` can say too): no walls, a bar asked
+/// for and not found, a castle of implausible size at the scale given or read.
+pub fn plan_warnings(
+    plan: &ParsedPlan,
+    plan_image: &str,
+    scale_note: &ScaleNote,
+    units: Units,
+    units_per_pixel: f64,
+) -> Vec<Warning> {
+    let name = || plan_image.to_string();
+    let mut out = Vec::new();
+    if let ScaleNote::BarNotFound { metres, .. } = scale_note {
+        out.push(Warning::ScaleBarNotFound {
+            plan: name(),
+            metres: *metres,
+        });
+    }
+    if plan.edges.is_empty() {
+        out.push(Warning::NoWalls { plan: name() });
+        return out;
+    }
+    if units == Units::Metres
+        && let Some(pixels) = built_extent(plan)
+    {
+        let metres_across = pixels * units_per_pixel;
+        if !CASTLE_METRES.contains(&metres_across) {
+            out.push(Warning::ImplausibleSize {
+                plan: name(),
+                metres_across,
+                metres_per_pixel: units_per_pixel,
+            });
+        }
+    }
+    out
+}
+
+/// The checks on the reconstruction: no structure, most of the ink unbuilt, façades that make
+/// needles or giants. Call after [`plan_warnings`] (a plan without walls is not checked again).
+pub fn model_warnings(
+    plan: &ParsedPlan,
+    estimate: &Estimate,
+    agreement: &Agreement,
+) -> Vec<Warning> {
+    let name = || estimate.plan.image.clone();
+    let mut out = Vec::new();
+    if plan.edges.is_empty() {
+        return out;
+    }
+    if estimate.structures.is_empty() {
+        out.push(Warning::NoStructures { plan: name() });
+        return out;
+    }
+    if agreement.plan_pixels > 0 && agreement.recall < MIN_RECALL {
+        out.push(Warning::InkLeftUnbuilt {
+            plan: name(),
+            recall: agreement.recall,
+        });
+    }
+    let any_measured_tower = estimate
+        .structures
+        .iter()
+        .any(|s| height_source(s) == Source::Measured);
+    for (i, s) in estimate.structures.iter().enumerate() {
+        if s.facades.is_empty() {
+            continue;
+        }
+        let photos = s
+            .facades
+            .iter()
+            .map(|f| f.image.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
+        if let Some(width) = footprint_width(&s.footprint)
+            && width > 0.0
+            && s.height > MAX_HEIGHT_OVER_WIDTH * width
+        {
+            out.push(Warning::Needle {
+                structure: s.id.clone(),
+                photos: photos.clone(),
+                height: s.height,
+                width,
+            });
+        }
+        // The structures around it that no photo measured: user heights and class defaults,
+        // but not a default keep raised over measured towers (heights::propagate), whose
+        // height is the photo's.
+        let tallest_around = estimate
+            .structures
+            .iter()
+            .enumerate()
+            .filter(|&(k, o)| k != i && o.facades.is_empty())
+            .filter(|(_, o)| match height_source(o) {
+                Source::User => true,
+                Source::Default => !(o.role == Role::Keep && any_measured_tower),
+                Source::Measured | Source::Lent => false,
+            })
+            .map(|(_, o)| o.height)
+            .fold(0.0_f64, f64::max);
+        if tallest_around > 0.0 && s.height > MAX_OVER_SURROUNDINGS * tallest_around {
+            out.push(Warning::TowersOver {
+                structure: s.id.clone(),
+                photos,
+                height: s.height,
+                tallest_around,
+            });
+        }
+    }
+    out
+}
+
+fn height_source(s: &Structure) -> Source {
+    s.provenance
+        .get("height")
+        .map_or(Source::Default, |p| p.source())
+}
+
+/// The larger horizontal side of a footprint (model units); none for walls, whose height is
+/// not a façade's.
+fn footprint_width(f: &Footprint) -> Option<f64> {
+    match f {
+        Footprint::Circle { radius, .. } => Some(2.0 * radius),
+        Footprint::Rectangle { size, .. } => Some(size[0].max(size[1])),
+        Footprint::Blocks { blocks, rotation } => {
+            // The blocks' extent in their own turned frame.
+            let (c, s) = (rotation.cos(), rotation.sin());
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for b in blocks {
+                let u = b.center[0] * c + b.center[1] * s;
+                let v = -b.center[0] * s + b.center[1] * c;
+                lo = [
+                    lo[0].min(u - b.size[0] / 2.0),
+                    lo[1].min(v - b.size[1] / 2.0),
+                ];
+                hi = [
+                    hi[0].max(u + b.size[0] / 2.0),
+                    hi[1].max(v + b.size[1] / 2.0),
+                ];
+            }
+            (!blocks.is_empty()).then(|| (hi[0] - lo[0]).max(hi[1] - lo[1]))
+        }
+        Footprint::Wall { .. } => None,
+    }
+}
+
+/// The larger side, in plan pixels, of the box round every pixel the plan builds on or
+/// encloses (every label but castle_surroundings); none when there is none.
+fn built_extent(plan: &ParsedPlan) -> Option<f64> {
+    let outside = Label::CastleSurroundings as u8;
+    let w = plan.width as usize;
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for (i, &l) in plan.labels.iter().enumerate() {
+        if l != outside {
+            let (x, y) = (i % w, i / w);
+            x0 = x0.min(x);
+            y0 = y0.min(y);
+            x1 = x1.max(x);
+            y1 = y1.max(y);
+        }
+    }
+    (x0 != usize::MAX).then(|| ((x1 - x0 + 1).max(y1 - y0 + 1)) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::{Kind, MappedFacade, PlanSource, Provenance, Side, WindowColumns};
+    use plan::scale::ModelScale;
+    use std::collections::BTreeMap;
+
+    /// A 100 × 80 plan whose built area is the box [x0, x1) × [y0, y1), with `edges` walls.
+    fn plan(edges: usize, built: [usize; 4]) -> ParsedPlan {
+        let (w, h) = (100u32, 80u32);
+        let mut labels = vec![Label::CastleSurroundings as u8; (w * h) as usize];
+        for y in built[1]..built[3] {
+            for x in built[0]..built[2] {
+                labels[y * w as usize + x] = Label::Courtyard as u8;
+            }
+        }
+        ParsedPlan {
+            width: w,
+            height: h,
+            vertices: vec![],
+            edges: (0..edges)
+                .map(|_| plan::PlanEdge {
+                    from: 0,
+                    to: 0,
+                    label: Label::CastleOuterWall,
+                    points: vec![],
+                    fit: None,
+                    thickness: 3.0,
+                })
+                .collect(),
+            faces: vec![],
+            labels,
+            walls: plan::thin::Mask::new(w, h),
+            towers: 0,
+            bulge_towers: vec![],
+            spurs: vec![],
+            pre: Default::default(),
+            warnings: vec![],
+            scale_bar: None,
+        }
+    }
+
+    fn structure(id: &str, role: Role, radius: f64, height: f64, source: &str) -> Structure {
+        let mut provenance = BTreeMap::new();
+        provenance.insert(
+            "height".to_string(),
+            Provenance::new(source, "test height", None),
+        );
+        Structure {
+            id: id.into(),
+            label: Label::TowerRoom,
+            role,
+            kind: Kind::HollowCylindrical,
+            footprint: Footprint::Circle {
+                center: [0.0, 0.0],
+                radius,
+            },
+            height,
+            wall_thickness: 1.0,
+            facades: vec![],
+            roof: None,
+            crenellated: None,
+            children: vec![],
+            provenance,
+        }
+    }
+
+    fn mapped(image: &str) -> MappedFacade {
+        MappedFacade {
+            image: image.into(),
+            side: Side::Arc,
+            arc: None,
+            scale: 1.0,
+            height_factor: 1.0,
+            width: 10.0,
+            height: 30.0,
+            floors: vec![],
+            windows: WindowColumns {
+                count: 0,
+                offset: 0.0,
+                width: 0.0,
+                gap: 0.0,
+            },
+            joint: false,
+            bbox: [0.0, 0.0, 10.0, 30.0],
+            texture: None,
+            gothic: None,
+        }
+    }
+
+    fn estimate(structures: Vec<Structure>) -> Estimate {
+        Estimate {
+            scale: ModelScale::metric(1.0),
+            plan: PlanSource {
+                image: "plan.png".into(),
+                width: 100,
+                height: 80,
+                towers: 0,
+            },
+            structures,
+            assumptions: vec![],
+        }
+    }
+
+    fn agreement(recall: f64) -> Agreement {
+        Agreement {
+            iou: recall,
+            precision: 1.0,
+            recall,
+            plan_pixels: 1000,
+            model_pixels: (1000.0 * recall) as usize,
+            overlap_pixels: (1000.0 * recall) as usize,
+            missed_by_label: [0; 11],
+            rooms: vec![],
+            towers: vec![],
+        }
+    }
+
+    /// A measured tower (photo) 20 across among default towers of 15 and a default keep.
+    fn castle(tower_height: f64) -> Vec<Structure> {
+        let mut measured = structure("tower1", Role::Tower, 10.0, tower_height, "tower.jpg");
+        measured.facades.push(mapped("tower.jpg"));
+        vec![
+            measured,
+            structure("tower2", Role::Tower, 10.0, 15.0, "default"),
+            structure("keep1", Role::Keep, 16.0, 1.5 * tower_height, "default"),
+        ]
+    }
+
+    #[test]
+    fn a_plan_without_walls_warns_once_and_names_the_drawing() {
+        let p = plan(0, [0, 0, 0, 0]);
+        let w = plan_warnings(&p, "rochester.png", &ScaleNote::Given, Units::Metres, 0.5);
+        assert_eq!(
+            w,
+            vec![Warning::NoWalls {
+                plan: "rochester.png".into()
+            }]
+        );
+        let text = w[0].to_string();
+        assert!(text.starts_with("no walls were read from rochester.png: is it a castle plan?"));
+        assert!(text.contains("ink = \"rules\""), "{text}");
+        // The model checks add nothing to it.
+        assert!(model_warnings(&p, &estimate(vec![]), &agreement(0.0)).is_empty());
+    }
+
+    #[test]
+    fn walls_without_structures_warn() {
+        let p = plan(4, [10, 10, 60, 60]);
+        assert_eq!(
+            model_warnings(&p, &estimate(vec![]), &agreement(0.0)),
+            vec![Warning::NoStructures {
+                plan: "plan.png".into()
+            }]
+        );
+    }
+
+    #[test]
+    fn most_of_the_ink_unbuilt_warns_below_half_the_recall() {
+        let p = plan(4, [10, 10, 60, 60]);
+        let e = estimate(vec![structure("tower1", Role::Tower, 5.0, 15.0, "default")]);
+        assert!(model_warnings(&p, &e, &agreement(0.5)).is_empty());
+        let w = model_warnings(&p, &e, &agreement(0.38));
+        assert_eq!(
+            w,
+            vec![Warning::InkLeftUnbuilt {
+                plan: "plan.png".into(),
+                recall: 0.38
+            }]
+        );
+        assert!(
+            w[0].to_string()
+                .starts_with("only 38 % of plan.png's built area")
+        );
+    }
+
+    #[test]
+    fn a_facade_making_a_needle_warns_and_a_tower_does_not() {
+        let p = plan(4, [10, 10, 60, 60]);
+        // 35 high on 20 across (Coucy's corner tower): plausible.
+        assert!(model_warnings(&p, &estimate(castle(35.0)), &agreement(0.9)).is_empty());
+        // 90 high on 20 across: a needle, and 6 × the default tower beside it.
+        let w = model_warnings(&p, &estimate(castle(90.0)), &agreement(0.9));
+        assert_eq!(
+            w,
+            vec![
+                Warning::Needle {
+                    structure: "tower1".into(),
+                    photos: "tower.jpg".into(),
+                    height: 90.0,
+                    width: 20.0
+                },
+                Warning::TowersOver {
+                    structure: "tower1".into(),
+                    photos: "tower.jpg".into(),
+                    height: 90.0,
+                    tallest_around: 15.0
+                }
+            ]
+        );
+        assert!(
+            w[0].to_string()
+                .starts_with("tower1 is 4.5 times taller than wide")
+        );
+        assert!(
+            w[1].to_string()
+                .contains("6.0 times the tallest structure around it")
+        );
+    }
+
+    #[test]
+    fn a_facade_three_times_the_tallest_around_warns_on_a_wide_structure() {
+        let p = plan(4, [10, 10, 60, 60]);
+        // 50 across: 70 high is no needle, but over 3 × the default 15 (the raised keep, the
+        // photo's, does not count).
+        let mut s = castle(70.0);
+        s[0].footprint = Footprint::Circle {
+            center: [0.0, 0.0],
+            radius: 25.0,
+        };
+        s[0].provenance.insert(
+            "height".into(),
+            Provenance::new("tower.jpg", "§6.1.2 façade height", None),
+        );
+        let w = model_warnings(&p, &estimate(s.clone()), &agreement(0.9));
+        assert!(
+            matches!(&w[..], [Warning::TowersOver { tallest_around, .. }] if *tallest_around == 15.0),
+            "{w:?}"
+        );
+        // A user's 30 m beside it makes 70 plausible.
+        s.push(structure("hall1", Role::Range, 8.0, 30.0, "user"));
+        assert!(model_warnings(&p, &estimate(s), &agreement(0.9)).is_empty());
+    }
+
+    #[test]
+    fn a_scale_making_the_castle_a_toy_or_a_city_warns_and_pixels_do_not() {
+        // Built area 50 px across.
+        let p = plan(4, [10, 10, 60, 40]);
+        let check = |units, s| plan_warnings(&p, "plan.png", &ScaleNote::Given, units, s);
+        assert!(check(Units::Metres, 0.2).is_empty()); // 10 m
+        assert!(check(Units::Metres, 40.0).is_empty()); // 2 km
+        assert_eq!(
+            check(Units::Metres, 0.1),
+            vec![Warning::ImplausibleSize {
+                plan: "plan.png".into(),
+                metres_across: 5.0,
+                metres_per_pixel: 0.1
+            }]
+        );
+        let w = check(Units::Metres, 50.0);
+        assert!(w[0].to_string().contains("is 2500.0 m across"), "{}", w[0]);
+        // Without a scale the size is not known: nothing to say.
+        assert!(check(Units::Pixels, 1.0).is_empty());
+    }
+
+    #[test]
+    fn a_scale_bar_not_found_warns_with_the_way_out() {
+        let p = plan(4, [10, 10, 60, 40]);
+        let note = ScaleNote::BarNotFound {
+            metres: 30.0,
+            assumed: "1 m = 2 px".into(),
+        };
+        let w = plan_warnings(&p, "plan.png", &note, Units::Pixels, 1.0);
+        assert_eq!(
+            w,
+            vec![Warning::ScaleBarNotFound {
+                plan: "plan.png".into(),
+                metres: 30.0
+            }]
+        );
+        let text = w[0].to_string();
+        assert!(
+            text.starts_with("scale_bar = 30: no scale bar found for the 30 m given (")
+                && text.contains("continuing in plan pixels in plan = \"plan.png\"")
+                && text.contains("give scale (metres per pixel) instead, or click the bar"),
+            "{text}"
+        );
+    }
+}
