@@ -44,28 +44,28 @@ try {
   const token = new URL(url).searchParams.get('token');
   const apiGet = (u) => page.evaluate(([u, t]) => fetch(u, { headers: { 'x-castellan-token': t } }).then((r) => r.json()), [u, token]);
   const at = async ([x, y]) => {
-    const el = page.locator('#fix-canvas');
+    const el = page.locator('#planfix-canvas');
     await el.scrollIntoViewIfNeeded();
     const b = await el.boundingBox();
     const [w, h] = await el.evaluate((e) => [e.width, e.height]);
     return [b.x + (x * b.width) / w, b.y + (y * b.height) / h];
   };
   const click = async (pt) => { const [x, y] = await at(pt); await page.mouse.click(x, y); };
-  const count = async () => Number(await page.getAttribute('#fix-info', 'data-count'));
-  const towers = async () => Number(await page.getAttribute('#fix-info', 'data-towers'));
+  const count = async () => Number(await page.getAttribute('#planfix-info', 'data-count'));
+  const towers = async () => Number(await page.getAttribute('#planfix-info', 'data-towers'));
   // Waits for the answer of a correction: the count of corrections becomes n.
   const saved = async (n) => {
     try {
-      await page.waitForSelector(`#fix-info[data-count="${n}"]`, { timeout: 30_000 });
+      await page.waitForSelector(`#planfix-info[data-count="${n}"]`, { timeout: 30_000 });
     } catch (e) {
       throw new Error(`no correction saved (${n} expected); the page says: ${await page.textContent('#status')}`);
     }
   };
   const roundTrips = [];
-  const roundTrip = async () => roundTrips.push(Number(await page.getAttribute('#fix-info', 'data-round-trip-ms')));
+  const roundTrip = async () => roundTrips.push(Number(await page.getAttribute('#planfix-info', 'data-round-trip-ms')));
 
   await page.click('#plan-run');
-  await page.waitForSelector('#fix-canvas[data-loaded=true]');
+  await page.waitForSelector('#planfix-canvas[data-loaded=true]');
   const parsedTowers = Number(await page.getAttribute('#plan-info', 'data-towers'));
   check(parsedTowers === 2, `the demo plan has 2 towers, the page says ${parsedTowers}`);
   check(/2 towers/.test(await page.textContent('#plan-info')), 'the plan step says how many towers it found');
@@ -74,7 +74,7 @@ try {
 
   // A region relabelled: the ward is a chapel.
   await page.check('input[name=fix][value=label]');
-  await page.selectOption('#fix-label', 'chapel');
+  await page.selectOption('#planfix-label', 'chapel');
   await click(WARD);
   await saved(1);
   await roundTrip();
@@ -89,7 +89,7 @@ try {
   await saved(2);
   await roundTrip();
   check(await towers() === 1, `one tower left (${await towers()})`);
-  await page.click('#fix-undo');
+  await page.click('#planfix-undo');
   await saved(1);
   check(await towers() === 2, 'undo brings the tower back');
 
@@ -106,7 +106,7 @@ try {
   c = await apiGet('/api/corrections');
   check(c.tower[0].radius >= 18 && c.tower[0].radius <= 22, `its radius ${c.tower[0].radius}`);
   await page.locator('#plan').screenshot({ path: path.join(shots, 'plan-fix.png') });
-  await page.click('#fix-undo');
+  await page.click('#planfix-undo');
   await saved(1);
 
   // The scale from two clicks and a typed length (the dialog answers 20 m).
@@ -116,7 +116,7 @@ try {
   await saved(2);
   c = await apiGet('/api/corrections');
   check(c.scale_line && c.scale_line.metres === 20, `scale line ${JSON.stringify(c.scale_line)}`);
-  await page.click('#fix-undo');
+  await page.click('#planfix-undo');
   await saved(1);
 
   // A model, then a structure made the keep, 40 m high under a pyramid.
@@ -132,7 +132,7 @@ try {
   await page.click('#structure-save');
   await saved(2);
   await page.$eval('#reconstruct-info', (e) => { e.textContent = ''; });
-  await page.click('#fix-rebuild');
+  await page.click('#planfix-rebuild');
   await page.waitForFunction(() => /structures/.test(document.getElementById('reconstruct-info').textContent));
   const estimate = await apiGet('/files/out/estimate.json');
   const keeps = estimate.structures.filter((s) => s.role === 'keep');
@@ -143,14 +143,14 @@ try {
   await page.locator('#plan').screenshot({ path: path.join(shots, 'plan-fix-structure.png') });
 
   // Two regions merged: the keep's room and the ward.
-  const faces = (await apiGet('/api/corrections'), await page.textContent('#fix-info'));
+  const faces = (await apiGet('/api/corrections'), await page.textContent('#planfix-info'));
   await page.check('input[name=fix][value=merge]');
   await click(KEEP);
   await click(WARD);
   await saved(3);
-  const merged = await page.textContent('#fix-info');
+  const merged = await page.textContent('#planfix-info');
   check(faces !== merged, `the regions changed: ${faces} → ${merged}`);
-  await page.click('#fix-undo');
+  await page.click('#planfix-undo');
   await saved(2);
 
   // Plan settings: a scale in metres per pixel, saved and parsed.
@@ -164,7 +164,7 @@ try {
   await page.reload();
   await page.waitForSelector('body[data-ready=true]');
   await page.waitForSelector('#plan-overlay[data-loaded=true]');
-  const listed = await page.$$eval('#fix-list li', (l) => l.length);
+  const listed = await page.$$eval('#planfix-list li', (l) => l.length);
   check(listed === 2, `the two corrections listed after a reload (${listed})`);
   figures.relabel_round_trip_ms = roundTrips;
   check(errors.length === 0, `page errors: ${errors}`);

@@ -10,7 +10,7 @@ const MARK = { label: '#ffffff', tower: '#00e5ff', notower: '#ff1744', merge: '#
 
 export function initPlanFixes(ui) {
   const { $, api, step, status, fresh, loadImage, canvasImage, toImagePixels, cross } = ui;
-  const canvas = $('fix-canvas');
+  const canvas = $('planfix-canvas');
   let fixes = { label: [], tower: [], merge: [], structure: [], scale_line: null };
   const history = [];
   let redraw = () => {};
@@ -69,7 +69,7 @@ export function initPlanFixes(ui) {
   }
 
   function showList() {
-    const list = $('fix-list');
+    const list = $('planfix-list');
     list.replaceChildren();
     for (const kind of KEYS) {
       fixes[kind].forEach((f, i) => {
@@ -94,8 +94,8 @@ export function initPlanFixes(ui) {
       list.append(li);
     }
     const n = KEYS.reduce((k, key) => k + fixes[key].length, 0) + (fixes.scale_line ? 1 : 0);
-    $('fix-info').dataset.count = String(n);
-    $('fix-undo').disabled = history.length === 0;
+    $('planfix-info').dataset.count = String(n);
+    $('planfix-undo').disabled = history.length === 0;
   }
 
   async function showOverlay(url) {
@@ -120,14 +120,14 @@ export function initPlanFixes(ui) {
   async function settle(r, t) {
     await showOverlay(r.overlay);
     const ms = Math.round(performance.now() - t);
-    $('fix-info').textContent = `${r.towers} towers, ${r.faces} regions; saved and redrawn in ${ms} ms (server ${r.ms} ms)`;
-    $('fix-info').dataset.towers = String(r.towers);
-    $('fix-info').dataset.roundTripMs = String(ms);
+    $('planfix-info').textContent = `${r.towers} towers, ${r.faces} regions; saved and redrawn in ${ms} ms (server ${r.ms} ms)`;
+    $('planfix-info').dataset.towers = String(r.towers);
+    $('planfix-info').dataset.roundTripMs = String(ms);
     $('plan-info').dataset.towers = String(r.towers);
     showList();
   }
 
-  $('fix-undo').addEventListener('click', async () => {
+  $('planfix-undo').addEventListener('click', async () => {
     if (!history.length) return;
     const previous = history[history.length - 1];
     const t = performance.now();
@@ -157,7 +157,7 @@ export function initPlanFixes(ui) {
       dragging = null;
       await change((next) => next.tower.push(tower));
     } else if (m === 'label') {
-      await change((next) => next.label.push({ point: pt, label: $('fix-label').value }));
+      await change((next) => next.label.push({ point: pt, label: $('planfix-label').value }));
     } else if (m === 'notower') {
       await change((next) => next.tower.push({ point: pt, remove: true }));
     } else if (m === 'merge') {
@@ -220,7 +220,7 @@ export function initPlanFixes(ui) {
     if (r) await ui.parsePlan();
   });
 
-  $('fix-rebuild').addEventListener('click', () => $('reconstruct').click());
+  $('planfix-rebuild').addEventListener('click', () => $('reconstruct').click());
 
   return {
     // After the project is loaded: the saved corrections, settings and label legend.
@@ -229,7 +229,7 @@ export function initPlanFixes(ui) {
       const c = await api('GET', '/api/corrections');
       fixes = { label: c.label, tower: c.tower, merge: c.merge, structure: c.structure, scale_line: c.scale_line || null };
       history.length = 0;
-      const select = $('fix-label');
+      const select = $('planfix-label');
       const legend = $('label-legend');
       legend.replaceChildren();
       select.replaceChildren();
