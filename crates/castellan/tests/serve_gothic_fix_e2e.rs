@@ -7,37 +7,15 @@
 
 mod serve_support;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
 use facade::gothic::synth::{SynthSpec, synthetic_facade};
 use integrate::project::Project;
-use serve_support::{Server, demo_project};
+use serve_support::{Server, browser_test, demo_project, screenshots};
 
 /// How far (rectified pixels) the page drags the apex up.
 const APEX_DRAG: f64 = 8.0;
 
-fn missing(what: &str) {
-    let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-    assert!(!ci, "CI=true but {what}: .ci/run installs it");
-    eprintln!("SKIPPED serve_gothic_fix_e2e: {what} (see docs/serve.md, Tests)");
-}
-
 #[test]
 fn gothic_elements_are_dragged_deleted_and_undone_in_chromium() {
-    let chromium = std::env::var_os("CHROMIUM")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/usr/bin/chromium"));
-    if !chromium.is_file() {
-        return missing(&format!("no Chromium at {}", chromium.display()));
-    }
-    let e2e = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/e2e");
-    if !e2e.join("node_modules/playwright-core").is_dir() {
-        return missing(&format!(
-            "playwright-core is not installed: run `npm ci` in {}",
-            e2e.display()
-        ));
-    }
     let tmp = tempfile::tempdir().unwrap();
     let dir = demo_project(tmp.path());
     // The photo comes from outside the project, as a user's would.
@@ -47,30 +25,19 @@ fn gothic_elements_are_dragged_deleted_and_undone_in_chromium() {
         .save(&photo)
         .unwrap();
     let server = Server::start(&dir);
-    let shots = std::env::var_os("CASTELLAN_E2E_SCREENSHOTS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| tmp.path().join("screenshots"));
-    let out = match Command::new("node")
-        .arg("gothic_fix.e2e.mjs")
-        .current_dir(&e2e)
-        .env("CASTELLAN_URL", &server.url)
-        .env("SCREENSHOTS", &shots)
-        .env("CHROMIUM", &chromium)
-        .env("GOTHIC_PHOTO", &photo)
-        .env("APEX_DRAG", APEX_DRAG.to_string())
-        .output()
-    {
-        Ok(o) => o,
-        Err(e) => return missing(&format!("cannot run node ({e})")),
+    let shots = screenshots(&tmp.path().join("screenshots"));
+    let Some(figures) = browser_test(
+        "serve_gothic_fix_e2e",
+        "gothic_fix.e2e.mjs",
+        &server,
+        &shots,
+        &[
+            ("GOTHIC_PHOTO", photo.display().to_string()),
+            ("APEX_DRAG", APEX_DRAG.to_string()),
+        ],
+    ) else {
+        return;
     };
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "the browser test failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let figures: serde_json::Value =
-        serde_json::from_str(stdout.lines().last().unwrap_or("")).unwrap();
     eprintln!("gothic e2e figures: {figures}");
     let found = figures["elements"].as_u64().unwrap();
     assert_eq!(figures["after_delete"].as_u64(), Some(found - 1));

@@ -118,3 +118,63 @@ impl Drop for Server {
         let _ = self.child.wait();
     }
 }
+
+/// Where a browser test's screenshots go: $CASTELLAN_E2E_SCREENSHOTS (docs/serve for the docs),
+/// or `fallback`.
+pub fn screenshots(fallback: &Path) -> PathBuf {
+    std::env::var_os("CASTELLAN_E2E_SCREENSHOTS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| fallback.to_path_buf())
+}
+
+/// Runs the browser test tests/e2e/`script` with Node.js and playwright-core in Debian's
+/// Chromium (or $CHROMIUM) against `server`, with CASTELLAN_URL, SCREENSHOTS (`shots`) and
+/// CHROMIUM set and `env` besides; the script must succeed. Returns the JSON figures it prints
+/// last, or None after saying why `test` skips when Chromium, playwright-core (`npm ci` in
+/// tests/e2e) or Node.js is missing — under CI=true, which .ci/run sets, those are failures.
+pub fn browser_test(
+    test: &str,
+    script: &str,
+    server: &Server,
+    shots: &Path,
+    env: &[(&str, String)],
+) -> Option<serde_json::Value> {
+    let skip = |what: String| {
+        let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
+        assert!(!ci, "CI=true but {what}: .ci/run installs it");
+        eprintln!("SKIPPED {test}: {what} (see docs/serve.md, Tests)");
+        None
+    };
+    let chromium = std::env::var_os("CHROMIUM")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("/usr/bin/chromium"));
+    if !chromium.is_file() {
+        return skip(format!("no Chromium at {}", chromium.display()));
+    }
+    let e2e = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/e2e");
+    if !e2e.join("node_modules/playwright-core").is_dir() {
+        return skip(format!(
+            "playwright-core is not installed: run `npm ci` in {}",
+            e2e.display()
+        ));
+    }
+    let out = match Command::new("node")
+        .arg(script)
+        .current_dir(&e2e)
+        .env("CASTELLAN_URL", &server.url)
+        .env("SCREENSHOTS", shots)
+        .env("CHROMIUM", &chromium)
+        .envs(env.iter().map(|(k, v)| (*k, v.as_str())))
+        .output()
+    {
+        Ok(o) => o,
+        Err(e) => return skip(format!("cannot run node ({e})")),
+    };
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "the browser test failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Some(serde_json::from_str(stdout.lines().last().unwrap_or("")).unwrap())
+}
