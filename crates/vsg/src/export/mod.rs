@@ -1,4 +1,5 @@
-//! Exporters of a produced [`Model`]: binary glTF 2.0 (`.glb`) and Wavefront OBJ + MTL.
+//! Exporters of a produced [`Model`]: binary glTF 2.0 (`.glb`) and Wavefront OBJ + MTL; the
+//! heritage formats' shared rules (parts, classes, frame) in [`semantics`].
 //! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
 //! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
 
@@ -7,6 +8,7 @@ mod error;
 mod gltf;
 mod obj;
 mod options;
+pub mod semantics;
 mod shading;
 #[cfg(test)]
 mod tests;
