@@ -115,7 +115,7 @@ impl TopView {
 /// The structure a depth-1 node of the generated program belongs to: the longest id that the
 /// symbol is, or begins with followed by a capital (`tower1Site`, `hall2Roof`; `tower10`
 /// is not `tower1` followed by `0`).
-fn structure_of(symbol: &str, ids: &[String]) -> u32 {
+pub(crate) fn structure_of(symbol: &str, ids: &[String]) -> u32 {
     let mut best: Option<(usize, usize)> = None;
     for (k, id) in ids.iter().enumerate() {
         let Some(rest) = symbol.strip_prefix(id.as_str()) else {

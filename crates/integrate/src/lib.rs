@@ -48,6 +48,7 @@ pub mod error;
 pub mod estimate;
 pub mod gothic;
 pub mod heights;
+pub mod heritage;
 mod integration;
 pub mod library;
 pub mod photo;

@@ -519,8 +519,9 @@ pub fn reconstruct(
 
     progress(Progress::Started(Stage::Export));
     let t = Instant::now();
+    let heritage = crate::heritage::heritage(&estimate, &model, project.site.as_ref());
     // Textures of unknown real size repeat once a metre.
-    let mut exports = export(&model, &textures, estimate.scale.units_per_metre)?;
+    let mut exports = export(&model, &heritage, &textures, estimate.scale.units_per_metre)?;
     // Issue 25: how well the model covers the plan it was built from, at the preview's detail.
     let view = crate::agreement::top_view(
         &plan_stage.parsed,
@@ -611,9 +612,11 @@ fn texture_samples(
     Ok(out)
 }
 
-/// glTF (textures embedded), OBJ + MTL, a preview picture and statistics of `model`.
+/// glTF (textures embedded, the structures in its metadata), OBJ + MTL, a preview picture and
+/// statistics of `model`.
 fn export(
     model: &vsg::Model,
+    heritage: &vsg::export::semantics::Heritage,
     textures: &[Texture],
     texture_scale: f64,
 ) -> Result<Exports, PipelineError> {
@@ -636,7 +639,7 @@ fn export(
         );
         pngs.push((t.name.clone(), bytes));
     }
-    let glb = vsg::export::to_glb_with_textures(model, &options, &embedded)
+    let glb = vsg::export::to_glb_with_metadata(model, &options, &embedded, heritage)
         .map_err(|e| PipelineError::Internal(format!("cannot export model.glb: {e}")))?;
     let (obj, mtl) = vsg::export::to_obj(model, &options, "model.mtl")
         .map_err(|e| PipelineError::Internal(format!("cannot export model.obj: {e}")))?;

@@ -44,6 +44,10 @@ pub struct Project {
     /// tool); it wins over `scale` and `scale_bar`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale_line: Option<ScaleLine>,
+    /// Where the drawing stands on a map (`[site]`: EPSG code, origin, north), for the
+    /// CityJSON and IFC files' placement (issue 24).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub site: Option<crate::heritage::Site>,
     /// The user's corrections of the plan's regions (issue 22), by plan pixel.
     #[serde(default, rename = "label", skip_serializing_if = "Vec::is_empty")]
     pub label_fixes: Vec<plan::corrections::LabelFix>,
@@ -270,6 +274,9 @@ impl Project {
         }
         if let Some(Err(why)) = self.scale_line.as_ref().map(ScaleLine::check) {
             return bad(format!("scale_line: {why}"));
+        }
+        if let Some(Err(why)) = self.site.as_ref().map(crate::heritage::Site::check) {
+            return bad(format!("[site] {why}"));
         }
         if let Some(t) = self.thin_lines
             && !(0.0..=1.0).contains(&t)

@@ -77,13 +77,20 @@ fn assert_valid_with(name: &str, model: &Model, textures: &Textures) {
         ..ExportOptions::default()
     };
     let glb = to_glb_with_textures(model, &options, textures).expect("export succeeds");
-    let Some(script) = validator() else { return };
+    assert_valid_glb(name, &glb);
+}
+
+/// Validates a written GLB: no errors, no warnings. Returns the report (`None` when skipped).
+fn assert_valid_glb(name: &str, glb: &[u8]) -> Option<serde_json::Value> {
+    let Some(script) = validator() else {
+        return None;
+    };
     let nanos = SystemTime::now()
         .duration_since(UNIX_EPOCH)
         .map_or(0, |d| d.as_nanos());
     let file = format!("castellan-{name}-{}-{nanos}.glb", std::process::id());
     let path = std::env::temp_dir().join(file);
-    std::fs::write(&path, &glb).expect("write the temporary .glb");
+    std::fs::write(&path, glb).expect("write the temporary .glb");
     let out = Command::new("node")
         .arg(&script)
         .arg(&path)
@@ -99,6 +106,7 @@ fn assert_valid_with(name: &str, model: &Model, textures: &Textures) {
     let report: serde_json::Value = serde_json::from_str(&report).expect("a JSON report");
     assert_eq!(report["numErrors"], 0, "{report:#}");
     assert_eq!(report["numWarnings"], 0, "{report:#}");
+    Some(report)
 }
 
 /// Builds models child group by child group, like the interpreter does.
@@ -392,4 +400,41 @@ fn textured_model_with_embedded_images_is_valid() {
         },
     );
     assert_valid_with("textured", &t.0, &textures);
+}
+
+/// The castle example with its parts described in `EXT_structural_metadata` property tables and
+/// `EXT_mesh_features` feature IDs (issue 24): valid glTF. The Khronos validator does not know
+/// these two extensions and says so as information (`UNSUPPORTED_EXTENSION`), not as a warning;
+/// `gltf_metadata.rs` decodes the tables themselves.
+#[test]
+fn castle_with_structural_metadata_is_valid() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/castle.vsg");
+    let src = std::fs::read_to_string(&path).expect("example exists");
+    let model = vsg::run(&src, &vsg::RunOptions::default())
+        .unwrap_or_else(|e| panic!("{}", e.render("castle.vsg", &src)));
+    let heritage = vsg::export::semantics::Heritage::default();
+    let glb = vsg::export::to_glb_with_metadata(
+        &model,
+        &ExportOptions::default(),
+        &Textures::new(),
+        &heritage,
+    )
+    .expect("export succeeds");
+    let Some(report) = assert_valid_glb("castle-metadata", &glb) else {
+        return;
+    };
+    let unsupported: Vec<String> = report["messages"]
+        .as_array()
+        .expect("messages")
+        .iter()
+        .filter(|m| m["code"] == "UNSUPPORTED_EXTENSION")
+        .map(|m| m["message"].as_str().unwrap_or_default().to_string())
+        .collect();
+    assert_eq!(unsupported.len(), 2, "{report:#}");
+    for extension in ["EXT_mesh_features", "EXT_structural_metadata"] {
+        assert!(
+            unsupported.iter().any(|m| m.contains(extension)),
+            "{unsupported:?}"
+        );
+    }
 }

@@ -143,6 +143,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     ink_strokes: vec![],
                     seed: None,
                     scale_line: None,
+                    site: None,
                     label_fixes: vec![],
                     tower_fixes: vec![],
                     merges: vec![],

@@ -1,6 +1,7 @@
 //! Binary glTF 2.0 export. The glTF node tree is the semantic tree of §7.1.3 (one node per
 //! model node, local transforms, shape data in `extras`); only visible terminals carry meshes
-//! (§7.1.2), shared by all terminals with the same primitive and appearance.
+//! (§7.1.2), shared by all terminals with the same primitive and appearance (and, with
+//! structural metadata, the same part and symbol: `metadata`).
 
 use std::collections::HashMap;
 
@@ -12,7 +13,9 @@ use super::common::{
     Geometry, Palette, ShapeKey, check_model, finite_f32, solid_mesh, solid_volume, unit,
 };
 use super::error::ExportError;
+use super::metadata::{FeatureIds, Features};
 use super::options::{ExportOptions, TextureImage, Textures};
+use super::semantics::Heritage;
 use super::shading::{ShadedMesh, shade};
 use crate::tree::{Appearance, Model, NodeState};
 
@@ -45,6 +48,7 @@ struct Attributes {
     normal: json::Index<json::Accessor>,
     uv: Option<json::Index<json::Accessor>>,
     indices: json::Index<json::Accessor>,
+    vertices: usize,
 }
 
 #[derive(Default)]
@@ -55,8 +59,10 @@ struct Builder {
     /// numbers: a primitive drawn with textures of different real sizes needs different
     /// texture coordinates); `None`: no triangles.
     attributes: HashMap<(ShapeKey, [u64; 2]), Option<Attributes>>,
-    /// Meshes per distinct primitive and material slot.
-    meshes: HashMap<(ShapeKey, u32), Option<json::Index<json::Mesh>>>,
+    /// Meshes per distinct primitive, material slot and feature IDs.
+    meshes: HashMap<(ShapeKey, u32, Option<FeatureIds>), Option<json::Index<json::Mesh>>>,
+    /// Constant feature-ID accessors by vertex count and value.
+    feature_ids: HashMap<(usize, u32), json::Index<json::Accessor>>,
     /// Texture coordinates on every mesh, when some material is textured.
     textured: bool,
     /// While adding a mesh: the real-world size [u, v] of one repeat of its material's texture
@@ -72,10 +78,12 @@ pub(super) fn write_glb(
     model: &Model,
     options: &ExportOptions,
     textures: &Textures,
+    heritage: Option<&Heritage>,
     geometry: &Geometry,
 ) -> Result<Vec<u8>, ExportError> {
     check_model(model)?;
     let mut b = Builder::default();
+    let mut features = heritage.map(|h| Features::new(model, h));
     let textured = model.nodes.iter().enumerate().any(|(i, n)| {
         n.state == NodeState::Terminal
             && model.solid(i as u32).is_some()
@@ -138,12 +146,15 @@ pub(super) fn write_glb(
                 }
                 b.root.materials.push(m);
             }
-            mesh = match b.meshes.get(&(key, slot)) {
+            let ids = features
+                .as_mut()
+                .and_then(|f| f.of(model, i as u32, solid_volume(p, geometry)));
+            mesh = match b.meshes.get(&(key, slot, ids)) {
                 Some(&m) => m,
                 None => {
                     let crease = options.crease_angle_deg;
                     let shade = || shade(p.name(), &solid_mesh(p, geometry), crease);
-                    b.add_mesh(key, p.name(), slot, shade)?
+                    b.add_mesh(key, p.name(), slot, ids, shade)?
                 }
             };
             b.uv_frame = None;
@@ -191,6 +202,18 @@ pub(super) fn write_glb(
         nodes: roots,
     };
     b.root.scene = Some(b.root.push(scene));
+    if let Some(f) = features.filter(|f| f.has_rows()) {
+        let metadata = f.extension(model, &mut |bytes| b.metadata_view(bytes));
+        let others = &mut b
+            .root
+            .extensions
+            .get_or_insert_with(Default::default)
+            .others;
+        others.insert("EXT_structural_metadata".into(), metadata);
+        b.root
+            .extensions_used
+            .extend(["EXT_mesh_features", "EXT_structural_metadata"].map(String::from));
+    }
     b.finish()
 }
 
@@ -406,6 +429,7 @@ impl Builder {
             normal,
             uv,
             indices,
+            vertices: count,
         })
     }
 
@@ -416,6 +440,7 @@ impl Builder {
         key: ShapeKey,
         name: &str,
         material: u32,
+        ids: Option<FeatureIds>,
         shade: impl FnOnce() -> Result<ShadedMesh, ExportError>,
     ) -> Result<Option<json::Index<json::Mesh>>, ExportError> {
         // Without texture coordinates the repeat size changes nothing: one set of accessors.
@@ -434,7 +459,7 @@ impl Builder {
             }
         };
         let Some(a) = attributes else {
-            self.meshes.insert((key, material), None);
+            self.meshes.insert((key, material, ids), None);
             return Ok(None);
         };
         let attributes = [
@@ -443,9 +468,26 @@ impl Builder {
         ];
         let uv =
             a.uv.map(|uv| (Valid(json::mesh::Semantic::TexCoords(0)), uv));
+        let feature_ids = ids.map(|ids| {
+            let part = self.feature_id(a.vertices, ids.part);
+            let element = self.feature_id(a.vertices, ids.element);
+            [("FEATURE_ID_0", part), ("FEATURE_ID_1", element)].map(|(name, accessor)| {
+                (Valid(json::mesh::Semantic::Extras(name.into())), accessor)
+            })
+        });
+        let extensions = ids.map(|_| json::extensions::mesh::Primitive {
+            others: [("EXT_mesh_features".to_string(), Features::mesh_features())]
+                .into_iter()
+                .collect(),
+            ..Default::default()
+        });
         let primitive = json::mesh::Primitive {
-            attributes: attributes.into_iter().chain(uv).collect(),
-            extensions: None,
+            attributes: attributes
+                .into_iter()
+                .chain(uv)
+                .chain(feature_ids.into_iter().flatten())
+                .collect(),
+            extensions,
             extras: None,
             indices: Some(a.indices),
             material: Some(json::Index::new(material)),
@@ -459,8 +501,34 @@ impl Builder {
             primitives: vec![primitive],
             weights: None,
         });
-        self.meshes.insert((key, material), Some(mesh));
+        self.meshes.insert((key, material, ids), Some(mesh));
         Ok(Some(mesh))
+    }
+
+    /// A `vertices`-long float accessor holding `value` (exact below 2²⁴): a feature ID of
+    /// `EXT_mesh_features`, constant over a primitive.
+    fn feature_id(&mut self, vertices: usize, value: u32) -> json::Index<json::Accessor> {
+        use json::accessor::{ComponentType, Type};
+        if let Some(&a) = self.feature_ids.get(&(vertices, value)) {
+            return a;
+        }
+        let start = self.align();
+        for _ in 0..vertices {
+            self.bin.extend_from_slice(&(value as f32).to_le_bytes());
+        }
+        let view = self.view(start, None, Some(json::buffer::Target::ArrayBuffer));
+        let a = self.accessor(view, 0, vertices, ComponentType::F32, Type::Scalar, None);
+        self.feature_ids.insert((vertices, value), a);
+        a
+    }
+
+    /// Stores one column of a property table in a buffer view of its own, 8-byte aligned as
+    /// `EXT_structural_metadata` asks, and returns the view's index.
+    fn metadata_view(&mut self, bytes: &[u8]) -> u32 {
+        self.bin.resize(self.bin.len().next_multiple_of(8), 0);
+        let start = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.view(start, None, None).value() as u32
     }
 
     /// Serialises the JSON and wraps it and the binary data in a GLB container.

@@ -6,6 +6,7 @@
 mod common;
 mod error;
 mod gltf;
+mod metadata;
 mod obj;
 mod options;
 pub mod semantics;
@@ -44,6 +45,31 @@ pub fn to_glb_with_textures(
         model,
         options,
         textures,
+        None,
+        &Geometry {
+            mesh: &mesh,
+            volume: &volume,
+        },
+    )
+}
+
+/// Like [`to_glb_with_textures`], and describes the building's parts and elements in property
+/// tables (`EXT_structural_metadata`) that every drawn primitive points into by its feature IDs
+/// (`EXT_mesh_features`), so that 3D Tiles viewers show a part's label, volume, mass and
+/// provenance on click (issue 24; the tables in `metadata.rs`).
+pub fn to_glb_with_metadata(
+    model: &Model,
+    options: &ExportOptions,
+    textures: &Textures,
+    heritage: &semantics::Heritage,
+) -> Result<Vec<u8>, ExportError> {
+    let mesh = |p: &Primitive| p.mesh(&options.tessellation);
+    let volume = |p: &Primitive| p.volume();
+    gltf::write_glb(
+        model,
+        options,
+        textures,
+        Some(heritage),
         &Geometry {
             mesh: &mesh,
             volume: &volume,

@@ -94,10 +94,13 @@ pub enum Attribute {
 
 /// One part of the building: a node of the model (usually a structure of the castle, a child
 /// of the root) with its name and attributes (label, role, height, provenance of every
-/// parameter, …). Every node under `node` belongs to it.
+/// parameter, …). Every node under `node` and under each of `more_nodes` belongs to it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Part {
     pub node: NodeId,
+    /// Further nodes of the same part (a curtain built as several runs, a roof built beside
+    /// its tower); usually empty.
+    pub more_nodes: Vec<NodeId>,
     /// Unique among the parts, e.g. `tower2`.
     pub name: String,
     /// What the part is (`tower`, `keep`, `range`, `curtain wall`, `gatehouse`, …), free text.
@@ -195,6 +198,7 @@ impl Heritage {
                 };
                 Part {
                     node: id,
+                    more_nodes: Vec::new(),
                     name,
                     kind: symbol.to_string(),
                     attributes: BTreeMap::new(),
@@ -208,8 +212,10 @@ impl Heritage {
     pub fn part_of(model: &Model, parts: &[Part]) -> Vec<Option<usize>> {
         let mut of: Vec<Option<usize>> = vec![None; model.nodes.len()];
         for (i, p) in parts.iter().enumerate() {
-            if let Some(slot) = of.get_mut(p.node as usize) {
-                *slot = Some(i);
+            for id in std::iter::once(&p.node).chain(&p.more_nodes) {
+                if let Some(slot) = of.get_mut(*id as usize) {
+                    *slot = Some(i);
+                }
             }
         }
         // Parents come before their children (creation order), so one pass inherits.
