@@ -52,7 +52,7 @@ pub fn html(project: &Project, r: &Reconstruction) -> String {
     );
     let _ = writeln!(
         h,
-        "<p>Plan <code>{}</code>, {} façade photo(s), {} Gothic façade(s); units: {} ({} per plan pixel). Outputs: <a href=\"model.glb\">model.glb</a> (Blender, three.js, any glTF viewer), <a href=\"model.obj\">model.obj</a> (MeshLab), <a href=\"model.vsg\">model.vsg</a> (the generated program: <code>castellan vsg run model.vsg -o model.glb</code>), <a href=\"estimate.json\">estimate.json</a>, <a href=\"stats.json\">stats.json</a>, <a href=\"plan.svg\">plan.svg</a>.</p>",
+        "<p>Plan <code>{}</code>, {} façade photo(s), {} Gothic façade(s); units: {} ({} per plan pixel). Outputs: <a href=\"model.glb\">model.glb</a> (Blender, three.js, any glTF viewer), <a href=\"model.obj\">model.obj</a> (MeshLab), <a href=\"model.city.json\">model.city.json</a> (CityJSON 2.0: QGIS, cjio, 3D city viewers), <a href=\"model.ifc\">model.ifc</a> (IFC4: Bonsai, IfcOpenShell, BIM tools), <a href=\"model.vsg\">model.vsg</a> (the generated program: <code>castellan vsg run model.vsg -o model.glb</code>), <a href=\"estimate.json\">estimate.json</a>, <a href=\"stats.json\">stats.json</a>, <a href=\"plan.svg\">plan.svg</a>.</p>",
         esc(&project.plan),
         project.facades.len(),
         project.gothics.len(),

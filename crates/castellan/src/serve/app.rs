@@ -334,6 +334,7 @@ pub(super) fn outputs() -> Value {
     json!({
         "report": file_url("out/index.html"), "glb": file_url("out/model.glb"),
         "obj": file_url("out/model.obj"), "vsg": file_url("out/model.vsg"),
+        "cityjson": file_url("out/model.city.json"), "ifc": file_url("out/model.ifc"),
         "json": file_url("out/estimate.json"), "stats": file_url("out/stats.json"),
     })
 }

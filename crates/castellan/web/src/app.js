@@ -667,7 +667,8 @@ $('corr-save').addEventListener('click', async () => {
 function showOutputs(o) {
   const d = $('downloads');
   d.replaceChildren('Download: ');
-  for (const [label, url] of [['model.glb', o.glb], ['model.obj', o.obj], ['model.vsg', o.vsg],
+  for (const [label, url] of [['model.glb', o.glb], ['model.obj', o.obj],
+    ['model.city.json', o.cityjson], ['model.ifc', o.ifc], ['model.vsg', o.vsg],
     ['estimate.json', o.json], ['report', o.report]]) {
     const a = document.createElement('a');
     a.href = url;
