@@ -6,6 +6,8 @@
 mod common;
 mod error;
 mod gltf;
+mod ifc;
+mod ifc_step;
 mod obj;
 mod options;
 pub mod semantics;
@@ -20,6 +22,7 @@ pub use options::{ExportOptions, TextureImage, Textures};
 use crate::shape::Primitive;
 use crate::tree::Model;
 use common::Geometry;
+use semantics::Heritage;
 
 /// Writes `model` as a binary glTF 2.0 file: one node per model node (named by its symbol,
 /// with its local transform and shape data in `extras`), meshes on visible terminals only,
@@ -70,4 +73,16 @@ pub fn to_obj(
             volume: &volume,
         },
     )
+}
+
+/// Writes `model` as an IFC4 STEP file (issue 24): the building's parts as element assemblies
+/// of walls, roofs, slabs, windows and doors with tessellated bodies in metres (z up), rooms as
+/// spaces, volumes and masses as quantities, part attributes as `Pset_Castellan`, and the map
+/// placement of `heritage.frame` as a map conversion. Pure: the same input, the same text.
+pub fn to_ifc(
+    model: &Model,
+    heritage: &Heritage,
+    options: &ExportOptions,
+) -> Result<String, ExportError> {
+    ifc::write_ifc(model, heritage, options)
 }
