@@ -11,7 +11,8 @@
 - "products": per IfcElement, IfcElementAssembly and IfcSpace: its type, name, the NetVolume
   of its quantity sets (the file's claim) and the volume IfcOpenShell computes from its
   geometry (an assembly: the sum over the elements it aggregates);
-- "map": the IfcMapConversion's numbers, if any.
+- "map": the IfcMapConversion's numbers, if any;
+- "duplicate_guids": GlobalIds that more than one IfcRoot instance has.
 """
 
 import collections
@@ -66,6 +67,9 @@ def main():
             }
         )
 
+    guids = collections.Counter(e.GlobalId for e in f.by_type("IfcRoot"))
+    duplicates = sorted(g for g, n in guids.items() if n > 1)
+
     conversion = None
     for m in f.by_type("IfcMapConversion"):
         conversion = {
@@ -85,6 +89,7 @@ def main():
                 "errors": [str(s) for s in logger.statements],
                 "products": products,
                 "map": conversion,
+                "duplicate_guids": duplicates,
             },
             indent=1,
             default=str,

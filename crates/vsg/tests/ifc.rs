@@ -111,6 +111,7 @@ fn check(name: &str, ifc: &str) -> Option<Value> {
     let report: Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
     assert_eq!(report["schema"], "IFC4", "{name}");
     assert_eq!(report["errors"], serde_json::json!([]), "{name}: {stderr}");
+    assert_eq!(report["duplicate_guids"], serde_json::json!([]), "{name}");
     Some(report)
 }
 
@@ -656,6 +657,10 @@ fn real_program(path: &Path) {
         ifc.len(),
         took.as_secs_f64() * 1e3
     );
+    // To look at the files: CASTELLAN_IFC_OUT=DIR keeps them there.
+    if let Some(dir) = std::env::var_os("CASTELLAN_IFC_OUT") {
+        std::fs::write(Path::new(&dir).join(&name).with_extension("ifc"), &ifc).unwrap();
+    }
     let Some(report) = check(&name, &ifc) else {
         return;
     };
