@@ -1,11 +1,14 @@
-//! Exporters of a produced [`Model`]: binary glTF 2.0 (`.glb`) and Wavefront OBJ + MTL; the
-//! heritage formats' shared rules (parts, classes, frame) in [`semantics`].
+//! Exporters of a produced [`Model`]: binary glTF 2.0 (`.glb`, with structural metadata on
+//! request), Wavefront OBJ + MTL, and the heritage formats IFC4 and CityJSON 2.0, whose shared
+//! rules (parts, classes, frame) are in [`semantics`].
 //! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
 //! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
 
 mod common;
 mod error;
 mod gltf;
+mod ifc;
+mod ifc_step;
 mod metadata;
 mod obj;
 mod options;
@@ -21,6 +24,7 @@ pub use options::{ExportOptions, TextureImage, Textures};
 use crate::shape::Primitive;
 use crate::tree::Model;
 use common::Geometry;
+use semantics::Heritage;
 
 /// Writes `model` as a binary glTF 2.0 file: one node per model node (named by its symbol,
 /// with its local transform and shape data in `extras`), meshes on visible terminals only,
@@ -96,4 +100,16 @@ pub fn to_obj(
             volume: &volume,
         },
     )
+}
+
+/// Writes `model` as an IFC4 STEP file (issue 24): the building's parts as element assemblies
+/// of walls, roofs, slabs, windows and doors with tessellated bodies in metres (z up), rooms as
+/// spaces, volumes and masses as quantities, part attributes as `Castellan_Attributes`, and the map
+/// placement of `heritage.frame` as a map conversion. Pure: the same input, the same text.
+pub fn to_ifc(
+    model: &Model,
+    heritage: &Heritage,
+    options: &ExportOptions,
+) -> Result<String, ExportError> {
+    ifc::write_ifc(model, heritage, options)
 }

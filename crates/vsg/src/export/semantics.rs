@@ -162,7 +162,9 @@ pub struct Heritage {
     /// The parts; empty, [`Heritage::parts_or_default`] takes the root's children.
     pub parts: Vec<Part>,
     pub frame: Frame,
-    /// Attributes of the whole building (source drawing, castellan's version, …).
+    /// Attributes of the whole building (source drawing, castellan's version, …). The IFC
+    /// header takes its time stamp from the text attribute `timestamp` (ISO 8601) when there
+    /// is one, else 1970-01-01T00:00:00, so that the same model gives the same file.
     pub attributes: BTreeMap<String, Attribute>,
 }
 
@@ -258,13 +260,15 @@ pub fn part_totals(model: &Model, parts: &[Part], part_of: &[Option<usize>]) -> 
     totals
 }
 
-/// A terminal's mesh in world (model) coordinates, as `Point3`s, with its triangles: what the
-/// writers turn into surfaces.
+/// A mesh in world (model) coordinates: points and their triangles.
+pub type WorldMesh = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+/// A terminal's mesh in world (model) coordinates: what the writers turn into surfaces.
 pub fn world_mesh(
     model: &Model,
     id: NodeId,
     tessellation: &crate::shape::Tessellation,
-) -> Option<(Vec<[f64; 3]>, Vec<[u32; 3]>)> {
+) -> Option<WorldMesh> {
     let node = model.nodes.get(id as usize)?;
     let solid = model.solid(id)?;
     let mesh = solid.mesh(tessellation);
