@@ -13,13 +13,13 @@
 //! that was split further", and assemblies of assemblies make viewers' trees deep without
 //! saying more than the element names (the vsg symbols) already do.
 //!
-//! Void terminals: rooms (class `Space`) become `IfcSpace`s, aggregated by the storey (IFC
-//! puts spaces in the spatial tree, not under an element) and named after their part; other
-//! voids (arrow slits, crenels, window openings) are left out. An `IfcOpeningElement` must
-//! void an element (`IfcRelVoidsElement`) that it overlaps, but a vsg opening does not cut a
-//! wall, it takes the place of the masonry beside it (the split already left the gap), so
-//! there is no host to name and nothing to subtract. Each assembly keeps their count and
-//! volume among its quantities instead.
+//! Void terminals are `IfcSpace`s, as the issue asks ("IfcSpace for rooms and void shapes"),
+//! aggregated by the storey (IFC puts spaces in the spatial tree, not under an element) and
+//! named after their part: rooms (class `Space`) `INTERNAL`, the other voids (arrow slits,
+//! crenels, window openings) `USERDEFINED` with the object type `opening`. Not
+//! `IfcOpeningElement`: one must void an element (`IfcRelVoidsElement`) that it overlaps, but a
+//! vsg opening does not cut a wall, it takes the place of the masonry beside it (the split
+//! already left the gap), so there is no host to name and nothing to subtract.
 //!
 //! Geometry: each element's mesh ([`world_mesh`]) as an `IfcTriangulatedFaceSet` (IFC4's
 //! tessellated solid) in the file frame (metres, x east, y north, z up; [`Frame::to_world`]
@@ -139,7 +139,6 @@ pub(super) fn write_ifc(
     let mut members: Vec<Vec<Id>> = vec![Vec::new(); parts.len()];
     let mut loose = Vec::new();
     let mut spaces = Vec::new();
-    let mut openings = vec![(0usize, 0.0f64); parts.len()];
     let mut has_mass = vec![false; parts.len()];
     for (i, node) in model.nodes.iter().enumerate() {
         let id = i as NodeId;
@@ -150,13 +149,6 @@ pub(super) fn write_ifc(
         let symbol = model.symbol(node);
         let class = class_of(symbol, node.state);
         let volume = solid.volume() * mpu.powi(3);
-        if class == Class::Opening {
-            if let Some(p) = part {
-                openings[p].0 += 1;
-                openings[p].1 += volume;
-            }
-            continue;
-        }
         let appearance = model.appearance(node);
         let style = match node.state {
             NodeState::Terminal => Some(w.style(node.appearance, appearance)?),
@@ -168,15 +160,21 @@ pub(super) fn write_ifc(
         // Elements sit in their assembly's frame, spaces (spatial, aggregated by the storey)
         // in the storey's; every frame is the identity, the meshes are in the file frame.
         let placement = match (class, part) {
-            (Class::Space, _) | (_, None) => storey_at,
+            (Class::Space | Class::Opening, _) | (_, None) => storey_at,
             (_, Some(p)) => element_at[p],
         };
-        let head = format!("{guid},$,{name},$,$,{placement},{shape}");
+        let head =
+            |object_type: &str| format!("{guid},$,{name},$,{object_type},{placement},{shape}");
         let element = match class {
-            Class::Space => {
+            Class::Space | Class::Opening => {
                 let of = part.map_or(String::new(), |p| format!(" of {}", parts[p].name));
                 let long = label(&format!("{symbol}{of}"));
-                let args = format!("{head},{long},.ELEMENT.,.INTERNAL.,$");
+                let (object_type, kind) = match class {
+                    Class::Space => ("$", ".INTERNAL."),
+                    _ => ("'opening'", ".USERDEFINED."),
+                };
+                let head = head(object_type);
+                let args = format!("{head},{long},.ELEMENT.,{kind},$");
                 let space = w.step.add("IFCSPACE", &args);
                 spaces.push(space);
                 space
@@ -189,6 +187,7 @@ pub(super) fn write_ifc(
                     Class::Door => ("IFCDOOR", "$,$,.DOOR.,.NOTDEFINED.,$"),
                     _ => ("IFCWALL", ".SOLIDWALL."),
                 };
+                let head = head("$");
                 let element = w
                     .step
                     .add(entity, &format!("{head},{},{rest}", string(&i.to_string())));
@@ -208,7 +207,7 @@ pub(super) fn write_ifc(
             }
             _ => None,
         };
-        w.quantities(&format!("node/{i}"), element, volume, mass, None)?;
+        w.quantities(&format!("node/{i}"), element, volume, mass)?;
     }
 
     let mut contained = assemblies.clone();
@@ -221,13 +220,7 @@ pub(super) fn write_ifc(
         let t = totals[p];
         let scale = mpu.powi(3);
         let mass = has_mass[p].then_some(t.mass * scale);
-        w.quantities(
-            &key,
-            assemblies[p],
-            t.volume * scale,
-            mass,
-            Some(openings[p]),
-        )?;
+        w.quantities(&key, assemblies[p], t.volume * scale, mass)?;
         w.part_properties(part, assemblies[p])?;
     }
     let timestamp = match heritage.attributes.get("timestamp") {
@@ -414,15 +407,13 @@ impl Writer {
             .to_string())
     }
 
-    /// `BaseQuantities` of `object`: its net volume (m³), its mass (kg) when known and, for an
-    /// assembly, the count and volume of the openings left out of the file.
+    /// `BaseQuantities` of `object`: its net volume (m³) and its mass (kg) when known.
     fn quantities(
         &mut self,
         key: &str,
         object: Id,
         volume: f64,
         mass: Option<f64>,
-        openings: Option<(usize, f64)>,
     ) -> Result<(), ExportError> {
         let what = || format!("the quantities of {key}");
         // Quantities may not be negative; a unique shape's mesh volume can be −0 or −ε.
@@ -436,16 +427,6 @@ impl Writer {
             q.push(
                 self.step
                     .add("IFCQUANTITYWEIGHT", &format!("'NetWeight',$,$,{m},$")),
-            );
-        }
-        if let Some((count, volume)) = openings {
-            let args =
-                format!("'OpeningCount','voids not written (arrow slits, crenels)',$,{count},$");
-            q.push(self.step.add("IFCQUANTITYCOUNT", &args));
-            let v = real(volume.max(0.0), what)?;
-            q.push(
-                self.step
-                    .add("IFCQUANTITYVOLUME", &format!("'OpeningVolume',$,$,{v},$")),
             );
         }
         let guid = self.guid(&format!("{key}/quantities"));
