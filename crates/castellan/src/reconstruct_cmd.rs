@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Args;
 
 /// `castellan reconstruct` flags.
@@ -13,9 +13,16 @@ use clap::Args;
 pub struct ReconstructArgs {
     /// The project file (PROJECT.toml contract).
     pub project: PathBuf,
-    /// Output folder: model.vsg, model.glb, model.obj, stats.json, estimate.json, index.html.
+    /// Output folder: model.vsg, model.glb, model.obj, model.city.json, model.ifc, stats.json,
+    /// estimate.json, index.html.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Also write the CityJSON model (OUTDIR/model.city.json) here.
+    #[arg(long, value_name = "MODEL.city.json")]
+    pub cityjson: Option<PathBuf>,
+    /// Also write the IFC model (OUTDIR/model.ifc) here.
+    #[arg(long, value_name = "MODEL.ifc")]
+    pub ifc: Option<PathBuf>,
     /// Seed for the classifier's sampling and the program's randomness (overrides the project's).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -32,7 +39,19 @@ pub fn run(args: &ReconstructArgs) -> Result<()> {
     };
     let s = crate::reconstruction::reconstruct(&args.project, &args.output, &options)?;
     crate::reconstruction::print_summary(&s);
-    Ok(())
+    let mut copies = crate::output::Outputs::default();
+    for (path, name) in [
+        (&args.cityjson, "model.city.json"),
+        (&args.ifc, "model.ifc"),
+    ] {
+        if let Some(path) = path {
+            let from = args.output.join(name);
+            let bytes =
+                std::fs::read(&from).with_context(|| format!("cannot read {}", from.display()))?;
+            copies.add(path, bytes);
+        }
+    }
+    copies.commit()
 }
 
 #[cfg(test)]
@@ -53,6 +72,20 @@ mod tests {
         assert_eq!(c.args.output, PathBuf::from("out"));
         assert_eq!(c.args.seed, Some(3));
         assert_eq!(c.args.classifier, facade::classify::Method::Forest);
+        assert_eq!((c.args.cityjson, c.args.ifc), (None, None));
+        let c = Cli::try_parse_from([
+            "x",
+            "p.toml",
+            "-o",
+            "o",
+            "--cityjson",
+            "c.json",
+            "--ifc",
+            "m.ifc",
+        ])
+        .unwrap();
+        assert_eq!(c.args.cityjson, Some(PathBuf::from("c.json")));
+        assert_eq!(c.args.ifc, Some(PathBuf::from("m.ifc")));
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! `castellan vsg run`: read a program, produce the model, write glb / obj+mtl / STATS.json.
+//! `castellan vsg run`: read a program, produce the model, write glb / obj+mtl / STATS.json and
+//! the heritage formats (CityJSON, IFC; issue 24), the root's children as the building's parts.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -38,9 +39,27 @@ pub fn run(args: &VsgRunArgs) -> Result<()> {
         ..Default::default()
     };
     let mut outputs = Outputs::default();
-    let glb = vsg::export::to_glb_with_textures(&model, &export, &textures)
+    // The program's own parts: the root's children, in its units taken as metres.
+    let heritage = vsg::export::semantics::Heritage {
+        name: args
+            .program
+            .file_stem()
+            .map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned()),
+        ..Default::default()
+    };
+    let glb = vsg::export::to_glb_with_metadata(&model, &export, &textures, &heritage)
         .with_context(|| format!("cannot export {}", args.output.display()))?;
     outputs.add(&args.output, glb);
+    if let Some(path) = &args.cityjson {
+        let text = vsg::export::to_cityjson(&model, &heritage, &export)
+            .with_context(|| format!("cannot export {}", path.display()))?;
+        outputs.add(path, text.into_bytes());
+    }
+    if let Some(path) = &args.ifc {
+        let text = vsg::export::to_ifc(&model, &heritage, &export)
+            .with_context(|| format!("cannot export {}", path.display()))?;
+        outputs.add(path, text.into_bytes());
+    }
     if let Some(obj_path) = &args.obj {
         let mtl_path = obj_path.with_extension("mtl");
         let mtl_name = mtl_path
@@ -186,6 +205,16 @@ pub struct VsgRunArgs {
     /// Also write Wavefront OBJ (with an .mtl beside it), one group per terminal.
     #[arg(long, value_name = "MODEL.obj")]
     pub obj: Option<PathBuf>,
+    /// Also write CityJSON 2.0 (QGIS, cjio, 3D city viewers): a Building whose parts are the
+    /// root's children, LoD 2 solids with semantic surfaces, LoD 3 where there are windows or
+    /// doors; the program's units are taken as metres.
+    #[arg(long, value_name = "MODEL.city.json")]
+    pub cityjson: Option<PathBuf>,
+    /// Also write IFC4 (Bonsai, IfcOpenShell, BIM tools): the root's children as element
+    /// assemblies of walls, roofs, slabs, windows and doors, void shapes as spaces, volumes and
+    /// masses as quantities.
+    #[arg(long, value_name = "MODEL.ifc")]
+    pub ifc: Option<PathBuf>,
     /// Write counts and exact volumes as JSON.
     #[arg(long, value_name = "STATS.json")]
     pub stats: Option<PathBuf>,
@@ -268,6 +297,15 @@ mod tests {
             run_args(&["--obj", "m.obj"]).unwrap().obj,
             Some(PathBuf::from("m.obj"))
         );
+    }
+
+    #[test]
+    fn heritage_format_flags() {
+        let a = run_args(&[]).unwrap();
+        assert_eq!((a.cityjson, a.ifc), (None, None));
+        let a = run_args(&["--cityjson", "m.city.json", "--ifc", "m.ifc"]).unwrap();
+        assert_eq!(a.cityjson, Some(PathBuf::from("m.city.json")));
+        assert_eq!(a.ifc, Some(PathBuf::from("m.ifc")));
     }
 
     #[test]

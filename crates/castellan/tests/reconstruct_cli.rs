@@ -126,6 +126,8 @@ fn demo_writes_the_report_the_model_and_the_estimate() {
         "model.glb",
         "model.obj",
         "model.mtl",
+        "model.city.json",
+        "model.ifc",
         "stats.json",
         "estimate.json",
         "index.html",
@@ -140,6 +142,23 @@ fn demo_writes_the_report_the_model_and_the_estimate() {
     }
     // Issue 22: the report links each façade's label image with its view in colour.
     let report = std::fs::read_to_string(out.join("index.html")).unwrap();
+    // Issue 24: and the heritage formats, one part per structure of the estimate.
+    for link in ["href=\"model.city.json\"", "href=\"model.ifc\""] {
+        assert!(report.contains(link), "{link}");
+    }
+    let estimate: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("estimate.json")).unwrap()).unwrap();
+    let structures = estimate["structures"].as_array().unwrap().len();
+    let city: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("model.city.json")).unwrap()).unwrap();
+    let objects = city["CityObjects"].as_object().unwrap();
+    let parts = objects
+        .values()
+        .filter(|o| o["type"] == "BuildingPart")
+        .count();
+    assert_eq!(parts, structures);
+    let ifc = std::fs::read_to_string(out.join("model.ifc")).unwrap();
+    assert_eq!(ifc.matches("=IFCELEMENTASSEMBLY(").count(), structures);
     assert!(
         report.contains("(view: <a href=\"overlays/keep_south_near_labels.view.png\">"),
         "the report links the label view"

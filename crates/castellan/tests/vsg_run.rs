@@ -26,6 +26,41 @@ fn failure_message(c: &mut Command) -> String {
     String::from_utf8_lossy(&out.get_output().stderr).into_owned()
 }
 
+/// Issue 24: the castle example as CityJSON and IFC, the root's children as its parts, and its
+/// GLB with their property tables.
+#[test]
+fn writes_the_heritage_formats_with_the_roots_children_as_parts() {
+    let dir = tempfile::tempdir().unwrap();
+    let (glb, city, ifc) = (
+        dir.path().join("castle.glb"),
+        dir.path().join("castle.city.json"),
+        dir.path().join("castle.ifc"),
+    );
+    vsg_run(&examples().join("castle.vsg"), &glb)
+        .arg("--cityjson")
+        .arg(&city)
+        .arg("--ifc")
+        .arg(&ifc)
+        .assert()
+        .success();
+    let city: serde_json::Value = serde_json::from_slice(&std::fs::read(&city).unwrap()).unwrap();
+    assert_eq!(city["type"], "CityJSON");
+    assert_eq!(city["version"], "2.0");
+    let objects = city["CityObjects"].as_object().unwrap();
+    let building = &objects["castle"];
+    assert_eq!(building["type"], "Building");
+    // Four towers, four curtain walls and the keep.
+    assert_eq!(building["children"].as_array().unwrap().len(), 9);
+    let ifc = std::fs::read_to_string(&ifc).unwrap();
+    assert!(ifc.contains("FILE_SCHEMA(('IFC4'));"));
+    assert_eq!(ifc.matches("=IFCELEMENTASSEMBLY(").count(), 9);
+    let glb = std::fs::read(&glb).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let tables = &json["extensions"]["EXT_structural_metadata"]["propertyTables"];
+    assert_eq!(tables[0]["count"], 9);
+}
+
 #[test]
 fn runs_rules_7_3_and_writes_every_output() {
     let dir = tempfile::tempdir().unwrap();

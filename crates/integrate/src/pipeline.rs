@@ -412,6 +412,10 @@ pub struct Exports {
     pub glb: Vec<u8>,
     pub obj: String,
     pub mtl: String,
+    /// CityJSON 2.0: the building, a part per structure, semantic surfaces (issue 24).
+    pub cityjson: String,
+    /// IFC4: the structures as assemblies of walls, roofs, slabs, windows, doors; spaces.
+    pub ifc: String,
     /// A 960 × 640 picture of the model (3/4 view).
     pub preview: RgbImage,
     /// stats.json: the model's statistics and the stage timings.
@@ -612,8 +616,8 @@ fn texture_samples(
     Ok(out)
 }
 
-/// glTF (textures embedded, the structures in its metadata), OBJ + MTL, a preview picture and
-/// statistics of `model`.
+/// glTF (textures embedded, the structures in its metadata), OBJ + MTL, CityJSON, IFC, a
+/// preview picture and statistics of `model`.
 fn export(
     model: &vsg::Model,
     heritage: &vsg::export::semantics::Heritage,
@@ -643,6 +647,10 @@ fn export(
         .map_err(|e| PipelineError::Internal(format!("cannot export model.glb: {e}")))?;
     let (obj, mtl) = vsg::export::to_obj(model, &options, "model.mtl")
         .map_err(|e| PipelineError::Internal(format!("cannot export model.obj: {e}")))?;
+    let cityjson = vsg::export::to_cityjson(model, heritage, &options)
+        .map_err(|e| PipelineError::Internal(format!("cannot export model.city.json: {e}")))?;
+    let ifc = vsg::export::to_ifc(model, heritage, &options)
+        .map_err(|e| PipelineError::Internal(format!("cannot export model.ifc: {e}")))?;
     let picture = vsg::render::render(
         model,
         &vsg::render::RenderOptions {
@@ -661,6 +669,8 @@ fn export(
         glb,
         obj,
         mtl,
+        cityjson,
+        ifc,
         preview,
         stats: stats_json,
         terminals: stats.terminals,
@@ -717,6 +727,11 @@ impl Reconstruction {
         out.push(("model.glb".into(), self.exports.glb.clone()));
         out.push(("model.obj".into(), self.exports.obj.clone().into_bytes()));
         out.push(("model.mtl".into(), self.exports.mtl.clone().into_bytes()));
+        out.push((
+            "model.city.json".into(),
+            self.exports.cityjson.clone().into_bytes(),
+        ));
+        out.push(("model.ifc".into(), self.exports.ifc.clone().into_bytes()));
         let preview = encode_png(&self.exports.preview)
             .map_err(|e| PipelineError::Internal(format!("preview.png: {e}")))?;
         out.push(("preview.png".into(), preview));
