@@ -3,6 +3,8 @@
 //! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
 //! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
 
+mod cityjson;
+mod cityjson_geometry;
 mod common;
 mod error;
 mod gltf;
@@ -70,4 +72,16 @@ pub fn to_obj(
             volume: &volume,
         },
     )
+}
+
+/// Writes `model` as a CityJSON 2.0 document: one `Building` for `heritage`, one
+/// `BuildingPart` per part with LoD 2 (walls, roofs, floors) and, where it has windows or
+/// doors, LoD 3 solids whose faces are semantic surfaces naming their terminals (issue 24; the
+/// rules are in `cityjson.rs`). Coordinates are `heritage.frame`'s, in integer millimetres.
+pub fn to_cityjson(
+    model: &Model,
+    heritage: &semantics::Heritage,
+    options: &ExportOptions,
+) -> Result<String, ExportError> {
+    cityjson::write_cityjson(model, heritage, options)
 }
