@@ -25,6 +25,9 @@ use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
 
 struct Tree(Model);
 
+/// A child: symbol, state, shape, frame relative to the parent, appearance.
+type Kid<'a> = (&'a str, NodeState, Option<Primitive>, Isometry3<f64>, u32);
+
 impl Tree {
     fn new(symbol: &str) -> Tree {
         Tree(Model {
@@ -35,13 +38,8 @@ impl Tree {
         })
     }
 
-    /// Gives `parent` the children `kids` (symbol, state, shape, frame relative to the parent,
-    /// appearance) and returns the id of the first.
-    fn children(
-        &mut self,
-        parent: NodeId,
-        kids: &[(&str, NodeState, Option<Primitive>, Isometry3<f64>, u32)],
-    ) -> NodeId {
+    /// Gives `parent` the children `kids` and returns the id of the first.
+    fn children(&mut self, parent: NodeId, kids: &[Kid]) -> NodeId {
         let first = self.0.nodes.len() as NodeId;
         let p = &mut self.0.nodes[parent as usize];
         (p.state, p.first_child, p.child_count) =

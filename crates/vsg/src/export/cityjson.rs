@@ -13,7 +13,8 @@
 //!   (`https://www.opengis.net/def/crs/EPSG/0/<code>`) when the frame has a placement.
 //! - The `Building` with the heritage's attributes; each `BuildingPart` with its `parents`,
 //!   the part's attributes, `castellan_kind`, `volume_m3` and `mass_kg` ([`part_totals`], in
-//!   m³ and kg whatever the model's unit) and `terminals` (its visible terminals).
+//!   m³ and kg whatever the model's unit) and `terminals` (its visible terminals), which
+//!   replace a part's own attribute of the same name.
 //! - Geometry: LoD 2, the part's drawn wall, roof and floor terminals, one solid each (one
 //!   outer shell, coplanar triangles merged into polygons), and, for parts with window or door
 //!   terminals only, LoD 3: the same solids and those terminals' solids. CityJSON 2.0 allows a
@@ -47,11 +48,13 @@
 
 use serde_json::{Map, Value, json};
 
-use super::cityjson_geometry::{Face, MAX_INTEGER, Pool, SCALE, WorldMesh, faces};
+use super::cityjson_geometry::{Face, MAX_INTEGER, Pool, SCALE, Vertices, WorldMesh, faces};
 use super::common::check_model;
 use super::error::ExportError;
 use super::options::ExportOptions;
-use super::semantics::{Attribute, Class, Heritage, class_of, part_totals, world_mesh};
+use super::semantics::{
+    Attribute, Class, Heritage, Part, Totals, class_of, part_totals, world_mesh,
+};
 use crate::tree::{Model, NodeId, NodeState};
 
 /// sin 10°: faces whose normal rises less than this out of the horizontal are vertical.
@@ -77,48 +80,7 @@ pub(super) fn write_cityjson(
     let part_of = Heritage::part_of(model, &parts);
     let totals = part_totals(model, &parts, &part_of);
 
-    // The drawn terminals of each part, in metres; the grid's translate is their minimum.
-    let mut meshes: Vec<Vec<(NodeId, WorldMesh)>> = parts.iter().map(|_| Vec::new()).collect();
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for (id, node) in model.nodes.iter().enumerate() {
-        let id = id as NodeId;
-        let Some(&Some(part)) = part_of.get(id as usize) else {
-            continue;
-        };
-        if node.state != NodeState::Terminal {
-            continue;
-        }
-        let Some((points, triangles)) = world_mesh(model, id, &options.tessellation) else {
-            continue;
-        };
-        let mut world = Vec::with_capacity(points.len());
-        for (v, p) in points.into_iter().enumerate() {
-            let w = heritage.frame.to_world(p);
-            if !w.iter().all(|c| c.is_finite()) {
-                return Err(ExportError::NotFinite {
-                    what: format!(
-                        "vertex {v} of {} (node {id}) in CityJSON's frame",
-                        model.symbol(node)
-                    ),
-                    value: w.to_vec(),
-                });
-            }
-            world.push(w);
-        }
-        for &i in triangles.iter().flatten() {
-            if let Some(w) = world.get(i as usize) {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(w[k]);
-                    hi[k] = hi[k].max(w[k]);
-                }
-            }
-        }
-        let mesh = WorldMesh {
-            points: world,
-            triangles,
-        };
-        meshes[part].push((id, mesh));
-    }
+    let (meshes, lo, hi) = drawn_meshes(model, heritage, &part_of, parts.len(), options)?;
     let translate = if lo[0] <= hi[0] { lo } else { [0.0; 3] };
     // Integer millimetres must stay exact in a JSON reader's doubles.
     if (0..3).any(|k| (hi[k] - lo[k]) / SCALE > MAX_INTEGER) {
@@ -141,15 +103,13 @@ pub(super) fn write_cityjson(
                         faces: faces(&mesh, &mut pool),
                     }
                 })
-                .filter(|t| !t.faces.is_empty())
+                // Fewer than four faces enclose nothing: a terminal thinner than the grid.
+                .filter(|t| t.faces.len() >= 4)
                 .collect()
         })
         .collect();
 
-    let mut out = Vertices {
-        index: vec![u32::MAX; pool.keys.len()],
-        keys: Vec::new(),
-    };
+    let mut out = Vertices::new(&pool);
     let building = sanitize(&heritage.name, "building");
     let mut taken = vec![building.clone()];
     let mut objects = Map::new();
@@ -160,20 +120,7 @@ pub(super) fn write_cityjson(
             &format!("{building}-{}", sanitize(&part.name, "part")),
             &mut taken,
         );
-        let mut attributes: Map<String, Value> = part
-            .attributes
-            .iter()
-            .map(|(k, v)| (k.clone(), attribute(v)))
-            .collect();
-        attributes.insert("castellan_kind".into(), part.kind.clone().into());
-        attributes.insert("volume_m3".into(), (totals[i].volume * mpu3).into());
-        attributes.insert("mass_kg".into(), (totals[i].mass * mpu3).into());
-        attributes.insert("terminals".into(), totals[i].terminals.into());
-        let mut object = json!({
-            "type": "BuildingPart",
-            "parents": [building],
-            "attributes": attributes,
-        });
+        let mut object = part_object(part, &totals[i], mpu3, &building);
         let geometry = part_geometry(&drawn[i], &pool, &mut out);
         if !geometry.is_empty() {
             object["geometry"] = Value::Array(geometry);
@@ -217,53 +164,81 @@ pub(super) fn write_cityjson(
     Ok(serde_json::to_string(&document)?)
 }
 
-/// The file's `vertices`: the grid points the written rings use, numbered in order of use,
-/// so none is unused and none repeats.
-struct Vertices {
-    /// Per pool index, its index in `keys` (`u32::MAX` until used).
-    index: Vec<u32>,
-    keys: Vec<[i64; 3]>,
+/// The drawn terminals' meshes of each part in the file's frame (metres), and the bounds of
+/// the points their triangles use (the grid's translate is the minimum), or the first point
+/// that is not finite there.
+fn drawn_meshes(
+    model: &Model,
+    heritage: &Heritage,
+    part_of: &[Option<usize>],
+    parts: usize,
+    options: &ExportOptions,
+) -> Result<(PartMeshes, [f64; 3], [f64; 3]), ExportError> {
+    let mut meshes: PartMeshes = (0..parts).map(|_| Vec::new()).collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for (id, node) in model.nodes.iter().enumerate() {
+        let id = id as NodeId;
+        let Some(&Some(part)) = part_of.get(id as usize) else {
+            continue;
+        };
+        if node.state != NodeState::Terminal {
+            continue;
+        }
+        let Some((points, triangles)) = world_mesh(model, id, &options.tessellation) else {
+            continue;
+        };
+        let mut world = Vec::with_capacity(points.len());
+        for (v, p) in points.into_iter().enumerate() {
+            let w = heritage.frame.to_world(p);
+            if !w.iter().all(|c| c.is_finite()) {
+                return Err(ExportError::NotFinite {
+                    what: format!(
+                        "vertex {v} of {} (node {id}) in CityJSON's frame",
+                        model.symbol(node)
+                    ),
+                    value: w.to_vec(),
+                });
+            }
+            world.push(w);
+        }
+        for &i in triangles.iter().flatten() {
+            if let Some(w) = world.get(i as usize) {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(w[k]);
+                    hi[k] = hi[k].max(w[k]);
+                }
+            }
+        }
+        let mesh = WorldMesh {
+            points: world,
+            triangles,
+        };
+        meshes[part].push((id, mesh));
+    }
+    Ok((meshes, lo, hi))
 }
 
-impl Vertices {
-    fn ring(&mut self, ring: &[u32], pool: &Pool) -> Value {
-        let ids: Vec<u32> = ring
-            .iter()
-            .map(|&p| {
-                let slot = &mut self.index[p as usize];
-                if *slot == u32::MAX {
-                    *slot = self.keys.len() as u32;
-                    self.keys.push(pool.keys[p as usize]);
-                }
-                *slot
-            })
-            .collect();
-        json!(ids)
-    }
+/// Per part, its drawn terminals' node ids and meshes.
+type PartMeshes = Vec<Vec<(NodeId, WorldMesh)>>;
 
-    /// `[minx, miny, minz, maxx, maxy, maxz]` in metres of the written vertices.
-    fn extent(&self, translate: [f64; 3]) -> Option<[f64; 6]> {
-        let first = *self.keys.first()?;
-        let (lo, hi) = self
-            .keys
-            .iter()
-            .fold((first, first), |(mut lo, mut hi), k| {
-                for i in 0..3 {
-                    lo[i] = lo[i].min(k[i]);
-                    hi[i] = hi[i].max(k[i]);
-                }
-                (lo, hi)
-            });
-        let at = |k: [i64; 3], i: usize| translate[i] + k[i] as f64 * SCALE;
-        Some([
-            at(lo, 0),
-            at(lo, 1),
-            at(lo, 2),
-            at(hi, 0),
-            at(hi, 1),
-            at(hi, 2),
-        ])
-    }
+/// A `BuildingPart` without geometry: its parent and attributes, the computed ones
+/// (`castellan_kind`, `volume_m3`, `mass_kg`, `terminals`) over any of the part's own of the
+/// same name.
+fn part_object(part: &Part, totals: &Totals, mpu3: f64, building: &str) -> Value {
+    let mut attributes: Map<String, Value> = part
+        .attributes
+        .iter()
+        .map(|(k, v)| (k.clone(), attribute(v)))
+        .collect();
+    attributes.insert("castellan_kind".into(), part.kind.clone().into());
+    attributes.insert("volume_m3".into(), (totals.volume * mpu3).into());
+    attributes.insert("mass_kg".into(), (totals.mass * mpu3).into());
+    attributes.insert("terminals".into(), totals.terminals.into());
+    json!({
+        "type": "BuildingPart",
+        "parents": [building],
+        "attributes": attributes,
+    })
 }
 
 /// The part's geometry objects: LoD 2 (walls, roofs, floors) if it has any, and LoD 3 (those

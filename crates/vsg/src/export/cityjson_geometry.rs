@@ -3,7 +3,8 @@
 //!
 //! - [`Pool`] quantises points to the grid (`transform`: scale 0.001, translate = the minimum
 //!   corner) and interns them, so two points in one millimetre cell are one vertex of the file:
-//!   neighbouring terminals share their corners, and cjval finds no duplicate.
+//!   neighbouring terminals share their corners, and cjval finds no duplicate; [`Vertices`]
+//!   numbers the grid points the written rings use, so none is unused.
 //! - [`faces`] drops the triangles the grid flattens (a repeated vertex, or three in a line) and
 //!   merges each connected set of coplanar triangles into one polygon with its holes (an
 //!   annulus stays one face with an inner ring), walking the set's boundary edges; a set whose
@@ -13,6 +14,8 @@
 //!   clockwise, as CityJSON wants them.
 
 use std::collections::{HashMap, VecDeque};
+
+use serde_json::{Value, json};
 
 /// Metres per unit of the file's integer vertices: millimetres.
 pub(super) const SCALE: f64 = 0.001;
@@ -63,6 +66,62 @@ impl Pool {
             self.keys.push(key);
         }
         id
+    }
+}
+
+/// The file's `vertices`: the grid points the written rings use, numbered in order of use,
+/// so none is unused and none repeats.
+pub(super) struct Vertices {
+    /// Per pool index, its index in `keys` (`u32::MAX` until used).
+    index: Vec<u32>,
+    pub keys: Vec<[i64; 3]>,
+}
+
+impl Vertices {
+    pub fn new(pool: &Pool) -> Vertices {
+        Vertices {
+            index: vec![u32::MAX; pool.keys.len()],
+            keys: Vec::new(),
+        }
+    }
+
+    pub fn ring(&mut self, ring: &[u32], pool: &Pool) -> Value {
+        let ids: Vec<u32> = ring
+            .iter()
+            .map(|&p| {
+                let slot = &mut self.index[p as usize];
+                if *slot == u32::MAX {
+                    *slot = self.keys.len() as u32;
+                    self.keys.push(pool.keys[p as usize]);
+                }
+                *slot
+            })
+            .collect();
+        json!(ids)
+    }
+
+    /// `[minx, miny, minz, maxx, maxy, maxz]` in metres of the written vertices.
+    pub fn extent(&self, translate: [f64; 3]) -> Option<[f64; 6]> {
+        let first = *self.keys.first()?;
+        let (lo, hi) = self
+            .keys
+            .iter()
+            .fold((first, first), |(mut lo, mut hi), k| {
+                for i in 0..3 {
+                    lo[i] = lo[i].min(k[i]);
+                    hi[i] = hi[i].max(k[i]);
+                }
+                (lo, hi)
+            });
+        let at = |k: [i64; 3], i: usize| translate[i] + k[i] as f64 * SCALE;
+        Some([
+            at(lo, 0),
+            at(lo, 1),
+            at(lo, 2),
+            at(hi, 0),
+            at(hi, 1),
+            at(hi, 2),
+        ])
     }
 }
 
@@ -166,7 +225,7 @@ fn flat_on_grid(k: [[i64; 3]; 3]) -> bool {
 fn plane_of([a, b, c]: [[f64; 3]; 3]) -> ([f64; 3], f64) {
     let n = cross(sub(b, a), sub(c, a));
     let len = dot(n, n).sqrt();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return ([0.0; 3], 0.0);
     }
     let n = n.map(|v| v / len);
