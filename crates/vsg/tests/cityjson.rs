@@ -385,6 +385,23 @@ fn assert_vertices_unique_and_used(doc: &Value) {
     assert!(used.iter().all(|&u| u), "unused vertices");
 }
 
+/// Asserts that every solid of every geometry in the file encloses a positive volume: its
+/// shell faces outwards.
+fn assert_outward(name: &str, doc: &Value) {
+    let v = vertices(doc);
+    for (id, object) in doc["CityObjects"].as_object().expect("objects") {
+        for g in object["geometry"].as_array().into_iter().flatten() {
+            for (shell, _) in solids(g) {
+                let volume = signed_volume(&shell, &v);
+                assert!(
+                    volume > 0.0,
+                    "{name}: {id} has a shell facing inwards ({volume} m³)"
+                );
+            }
+        }
+    }
+}
+
 /// Counts of semantic surface types over all faces of a geometry object.
 fn surface_counts(geometry: &Value) -> BTreeMap<String, usize> {
     let mut counts = BTreeMap::new();
@@ -1034,15 +1051,7 @@ fn a_coucy_like_castle_is_valid() {
         .expect("volume");
     assert!(mass > 0.0 && (mass / volume - 2200.0).abs() < 2200.0 * 0.5);
     assert_vertices_unique_and_used(&doc);
-    // Every solid faces outwards.
-    let v = vertices(&doc);
-    for object in objects.values() {
-        for g in object["geometry"].as_array().into_iter().flatten() {
-            for (shell, _) in solids(g) {
-                assert!(signed_volume(&shell, &v) > 0.0);
-            }
-        }
-    }
+    assert_outward("coucy-like", &doc);
     assert_valid("coucy-like", &text, &doc);
 }
 
@@ -1061,6 +1070,7 @@ fn example_and_library_programs_are_valid() {
         let model = run(path, &src);
         let (text, doc) = write(&model, &heritage(path));
         assert_vertices_unique_and_used(&doc);
+        assert_outward(path, &doc);
         assert_valid(path, &text, &doc);
     }
 }
