@@ -57,7 +57,9 @@ fn export(c: &mut Criterion) {
     eprintln!(
         "100k terminals, 100 parts: glb {:.1} MB, glb + metadata {:.1} MB, CityJSON {:.1} MB, IFC {:.1} MB",
         mb(to_glb(&model, &o).unwrap().len()),
-        mb(to_glb_with_metadata(&model, &o, &t, &heritage).unwrap().len()),
+        mb(to_glb_with_metadata(&model, &o, &t, &heritage)
+            .unwrap()
+            .len()),
         mb(to_cityjson(&model, &heritage, &o).unwrap().len()),
         mb(to_ifc(&model, &heritage, &o).unwrap().len()),
     );

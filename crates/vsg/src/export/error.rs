@@ -19,7 +19,7 @@ pub enum ExportError {
     #[error("the {kind} mesh is malformed: {why}")]
     BadMesh { kind: &'static str, why: String },
     #[error(
-        "{what} is not a finite 32-bit float, as glTF and OBJ store numbers: {value:?} (is the model out of bounds?)"
+        "{what} is not a finite number the file can store (32-bit floats in glTF and OBJ, millimetres within 2^53 in CityJSON): {value:?} (is the model out of bounds?)"
     )]
     NotFinite { what: String, value: Vec<f64> },
     #[error("the GLB would be {bytes} bytes, more than the 4 GiB the format allows")]

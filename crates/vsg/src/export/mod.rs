@@ -4,6 +4,8 @@
 //! Following §7.1.2/§7.1.3 of Sui 2011, only terminals carry meshes, while the semantic
 //! hierarchy (non-terminals and void terminals included) is kept as the glTF node tree.
 
+mod cityjson;
+mod cityjson_geometry;
 mod common;
 mod error;
 mod gltf;
@@ -65,7 +67,7 @@ pub fn to_glb_with_metadata(
     model: &Model,
     options: &ExportOptions,
     textures: &Textures,
-    heritage: &semantics::Heritage,
+    heritage: &Heritage,
 ) -> Result<Vec<u8>, ExportError> {
     let mesh = |p: &Primitive| p.mesh(&options.tessellation);
     let volume = |p: &Primitive| p.volume();
@@ -103,8 +105,8 @@ pub fn to_obj(
 }
 
 /// Writes `model` as an IFC4 STEP file (issue 24): the building's parts as element assemblies
-/// of walls, roofs, slabs, windows and doors with tessellated bodies in metres (z up), rooms as
-/// spaces, volumes and masses as quantities, part attributes as `Castellan_Attributes`, and the map
+/// of walls, roofs, slabs, windows and doors with tessellated bodies in metres (z up), rooms and
+/// void shapes as spaces, volumes and masses as quantities, part attributes as `Castellan_Attributes`, and the map
 /// placement of `heritage.frame` as a map conversion. Pure: the same input, the same text.
 pub fn to_ifc(
     model: &Model,
@@ -112,4 +114,16 @@ pub fn to_ifc(
     options: &ExportOptions,
 ) -> Result<String, ExportError> {
     ifc::write_ifc(model, heritage, options)
+}
+
+/// Writes `model` as a CityJSON 2.0 document: one `Building` for `heritage`, one
+/// `BuildingPart` per part with LoD 2 (walls, roofs, floors) and, where it has windows or
+/// doors, LoD 3 solids whose faces are semantic surfaces naming their terminals (issue 24; the
+/// rules are in `cityjson.rs`). Coordinates are `heritage.frame`'s, in integer millimetres.
+pub fn to_cityjson(
+    model: &Model,
+    heritage: &Heritage,
+    options: &ExportOptions,
+) -> Result<String, ExportError> {
+    cityjson::write_cityjson(model, heritage, options)
 }

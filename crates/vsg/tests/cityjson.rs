@@ -1,0 +1,1080 @@
+//! The CityJSON 2.0 writer (issue 24; Sui 2011 §7.1.3's semantic tree as city objects and
+//! semantic surfaces), checked on the file it writes: counts of parts, solids, surfaces and
+//! vertices, volumes and orientation from the file's own vertices, the building–part links,
+//! the placement, and the official validators: cjval (the CityJSON validator, a Rust library,
+//! a dev-dependency) must find no error and no warning, and cjio (PyPI, installed on first use
+//! into `tools/cjio/.venv` from `tools/cjio/requirements.txt`) must load the file and count its
+//! city objects. Without Python 3 and its venv module the cjio checks skip with a message,
+//! unless `CI` is set.
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
+
+use nalgebra::{Isometry3, Vector3};
+use serde_json::Value;
+use vsg::export::semantics::{Attribute, Frame, Heritage, Part, Placement};
+use vsg::export::{ExportError, ExportOptions, to_cityjson};
+use vsg::shape::{Primitive, ShapeType};
+use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
+
+// ---------------------------------------------------------------------------------------------
+// Models built by hand, child group by child group, as the interpreter builds them.
+
+struct Tree(Model);
+
+/// A child: symbol, state, shape, frame relative to the parent, appearance.
+type Kid<'a> = (&'a str, NodeState, Option<Primitive>, Isometry3<f64>, u32);
+
+impl Tree {
+    fn new(symbol: &str) -> Tree {
+        Tree(Model {
+            nodes: vec![node(0, None, Isometry3::identity(), None)],
+            symbols: vec![symbol.to_owned()],
+            appearances: vec![Appearance::default()],
+            ..Default::default()
+        })
+    }
+
+    /// Gives `parent` the children `kids` and returns the id of the first.
+    fn children(&mut self, parent: NodeId, kids: &[Kid]) -> NodeId {
+        let first = self.0.nodes.len() as NodeId;
+        let p = &mut self.0.nodes[parent as usize];
+        (p.state, p.first_child, p.child_count) =
+            (NodeState::NonTerminal, first, kids.len() as u32);
+        let (world, depth) = (p.world, p.depth + 1);
+        for (index, &(name, state, shape, local, appearance)) in kids.iter().enumerate() {
+            self.0.symbols.push(name.to_owned());
+            let symbol = self.0.symbols.len() as u32 - 1;
+            let mut n = node(symbol, shape, world * local, Some(parent));
+            n.local = local;
+            (n.state, n.appearance, n.depth, n.index) = (state, appearance, depth, index as u32);
+            self.0.nodes.push(n);
+        }
+        first
+    }
+}
+
+fn node(
+    symbol: u32,
+    shape: Option<Primitive>,
+    world: Isometry3<f64>,
+    parent: Option<NodeId>,
+) -> Node {
+    Node {
+        symbol,
+        rule_line: 1,
+        shape,
+        local: world,
+        world,
+        appearance: 0,
+        state: NodeState::Terminal,
+        parent,
+        first_child: 0,
+        child_count: 0,
+        depth: 0,
+        index: 0,
+    }
+}
+
+fn prim(kind: ShapeType, params: &[f64]) -> Option<Primitive> {
+    Some(Primitive::new(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}")))
+}
+
+fn at(x: f64, y: f64, z: f64) -> Isometry3<f64> {
+    Isometry3::translation(x, y, z)
+}
+
+use NodeState::{NonTerminal, Terminal, VoidTerminal};
+
+/// A block of masonry (4 × 3 × 2 units, standing on y = 0, 2400 kg/m³) under a roof slab
+/// (4 × 1 × 2), as one part `block`.
+fn block() -> Tree {
+    let mut t = Tree::new("Castle");
+    t.0.appearances.push(Appearance {
+        density: Some(2400.0),
+        ..Appearance::default()
+    });
+    let part = t.children(0, &[("block", NonTerminal, None, at(0.0, 0.0, 0.0), 0)]);
+    t.children(
+        part,
+        &[
+            (
+                "block.masonry",
+                Terminal,
+                prim(ShapeType::Box, &[4.0, 3.0, 2.0]),
+                at(0.0, 1.5, 0.0),
+                1,
+            ),
+            (
+                "block.roof",
+                Terminal,
+                prim(ShapeType::Box, &[4.0, 1.0, 2.0]),
+                at(0.0, 3.5, 0.0),
+                0,
+            ),
+        ],
+    );
+    t
+}
+
+/// A small castle of four structures: a keep with masonry, a gable roof, two windows, a door
+/// and a void room; a round tower with a conic roof and floor slabs; a curtain with a wall
+/// walk and a crenel; and a ruin of void terminals only.
+fn castle() -> Tree {
+    let mut t = Tree::new("Castle");
+    let s = t.children(
+        0,
+        &[
+            ("keep", NonTerminal, None, at(0.0, 0.0, 0.0), 0),
+            ("tower", NonTerminal, None, at(12.0, 0.0, 3.0), 0),
+            ("curtain", NonTerminal, None, at(6.0, 0.0, -6.0), 0),
+            ("ruin", NonTerminal, None, at(-9.0, 0.0, 0.0), 0),
+        ],
+    );
+    let turned = |x: f64, y: f64, z: f64, a: f64| {
+        Isometry3::new(Vector3::new(x, y, z), Vector3::new(0.0, a, 0.0))
+    };
+    let half = std::f64::consts::PI;
+    t.children(
+        s,
+        &[
+            (
+                "keep.masonry",
+                Terminal,
+                prim(ShapeType::Box, &[8.0, 10.0, 6.0]),
+                at(0.0, 5.0, 0.0),
+                0,
+            ),
+            (
+                "keep.roof",
+                Terminal,
+                prim(ShapeType::Ramp, &[4.0, 3.0, 6.0]),
+                at(-2.0, 11.5, 0.0),
+                0,
+            ),
+            (
+                "keep.roof",
+                Terminal,
+                prim(ShapeType::Ramp, &[4.0, 3.0, 6.0]),
+                turned(2.0, 11.5, 0.0, half),
+                0,
+            ),
+            (
+                "keep.window",
+                Terminal,
+                prim(ShapeType::Box, &[1.0, 1.5, 0.2]),
+                at(-2.0, 6.0, 3.1),
+                0,
+            ),
+            (
+                "keep.window",
+                Terminal,
+                prim(ShapeType::Box, &[1.0, 1.5, 0.2]),
+                at(2.0, 6.0, 3.1),
+                0,
+            ),
+            (
+                "keep.door",
+                Terminal,
+                prim(ShapeType::Box, &[1.4, 2.4, 0.2]),
+                at(0.0, 1.2, 3.1),
+                0,
+            ),
+            (
+                "keep.room",
+                VoidTerminal,
+                prim(ShapeType::Box, &[6.0, 8.0, 4.0]),
+                at(0.0, 5.0, 0.0),
+                0,
+            ),
+        ],
+    );
+    t.children(
+        s + 1,
+        &[
+            (
+                "tower.masonry",
+                Terminal,
+                prim(ShapeType::ExtrudedRing, &[3.0, 12.0, 2.0]),
+                at(0.0, 6.0, 0.0),
+                0,
+            ),
+            (
+                "tower.floor",
+                Terminal,
+                prim(ShapeType::Cylinder, &[2.0, 0.3]),
+                at(0.0, 4.15, 0.0),
+                0,
+            ),
+            (
+                "tower.roof",
+                Terminal,
+                prim(ShapeType::Cone, &[3.4, 5.0]),
+                at(0.0, 14.5, 0.0),
+                0,
+            ),
+        ],
+    );
+    t.children(
+        s + 2,
+        &[
+            (
+                "wallStone",
+                Terminal,
+                prim(ShapeType::Box, &[10.0, 6.0, 2.0]),
+                at(0.0, 3.0, 0.0),
+                0,
+            ),
+            (
+                "curtainWalk",
+                Terminal,
+                prim(ShapeType::Box, &[10.0, 0.2, 1.4]),
+                at(0.0, 6.1, 0.3),
+                0,
+            ),
+            (
+                "wallStone",
+                Terminal,
+                prim(ShapeType::Box, &[10.0, 1.0, 0.6]),
+                at(0.0, 6.5, -0.7),
+                0,
+            ),
+            (
+                "curtainCrenel",
+                VoidTerminal,
+                prim(ShapeType::Box, &[1.0, 0.8, 0.6]),
+                at(0.0, 7.4, -0.7),
+                0,
+            ),
+        ],
+    );
+    t.children(
+        s + 3,
+        &[(
+            "ruin.room",
+            VoidTerminal,
+            prim(ShapeType::Box, &[3.0; 3]),
+            at(0.0, 1.5, 0.0),
+            0,
+        )],
+    );
+    t
+}
+
+fn heritage(name: &str) -> Heritage {
+    Heritage {
+        name: name.into(),
+        ..Heritage::default()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading the file back.
+
+fn write(model: &Model, heritage: &Heritage) -> (String, Value) {
+    let text = to_cityjson(model, heritage, &ExportOptions::default()).expect("export succeeds");
+    let json = serde_json::from_str(&text).expect("the file is JSON");
+    (text, json)
+}
+
+/// The file's vertices in metres (transform applied).
+fn vertices(doc: &Value) -> Vec<[f64; 3]> {
+    let t = &doc["transform"];
+    let num = |v: &Value, k: usize| v[k].as_f64().expect("a number");
+    doc["vertices"]
+        .as_array()
+        .expect("vertices")
+        .iter()
+        .map(|v| [0, 1, 2].map(|k| num(&t["translate"], k) + num(&t["scale"], k) * num(v, k)))
+        .collect()
+}
+
+type Ring = Vec<usize>;
+type Surface = Vec<Ring>;
+type Shell = Vec<Surface>;
+
+/// The solids (outer shells) of a `CompositeSolid`, with each surface's semantic type.
+fn solids(geometry: &Value) -> Vec<(Shell, Vec<String>)> {
+    assert_eq!(geometry["type"], "CompositeSolid");
+    let boundaries: Vec<Vec<Shell>> =
+        serde_json::from_value(geometry["boundaries"].clone()).expect("solid boundaries");
+    let values: Vec<Vec<Vec<usize>>> =
+        serde_json::from_value(geometry["semantics"]["values"].clone()).expect("values");
+    let surfaces = geometry["semantics"]["surfaces"]
+        .as_array()
+        .expect("surfaces");
+    boundaries
+        .into_iter()
+        .zip(values)
+        .map(|(solid, values)| {
+            assert_eq!(solid.len(), 1, "one outer shell per solid");
+            let kinds = values[0]
+                .iter()
+                .map(|&i| surfaces[i]["type"].as_str().expect("a type").to_string())
+                .collect();
+            (solid.into_iter().next().expect("a shell"), kinds)
+        })
+        .collect()
+}
+
+/// Signed volume of a shell from its polygons (holes included): Σ p₀·A/3 over the faces,
+/// with A the ring's vector area; positive when the shell faces outwards.
+fn signed_volume(shell: &Shell, v: &[[f64; 3]]) -> f64 {
+    let mut volume = 0.0;
+    for surface in shell {
+        let origin = v[surface[0][0]];
+        for ring in surface {
+            for w in 0..ring.len() {
+                let a = sub(v[ring[w]], origin);
+                let b = sub(v[ring[(w + 1) % ring.len()]], origin);
+                // Relative to a point of the face's plane, Σ (a × b)/2 is the ring's area
+                // vector; the volume's term is that point's height along it.
+                let c = [
+                    a[1] * b[2] - a[2] * b[1],
+                    a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0],
+                ];
+                volume += (origin[0] * c[0] + origin[1] * c[1] + origin[2] * c[2]) / 6.0;
+            }
+        }
+    }
+    volume
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Every directed edge of the shell's rings has its reverse exactly once: closed, and every
+/// face oriented like its neighbours.
+fn is_closed(shell: &Shell) -> bool {
+    let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
+    for ring in shell.iter().flatten() {
+        for w in 0..ring.len() {
+            *edges
+                .entry((ring[w], ring[(w + 1) % ring.len()]))
+                .or_default() += 1;
+        }
+    }
+    edges
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+}
+
+/// Asserts that no two vertices are equal and that every one is used.
+fn assert_vertices_unique_and_used(doc: &Value) {
+    let vs: Vec<[i64; 3]> = serde_json::from_value(doc["vertices"].clone()).expect("integers");
+    let distinct: HashSet<[i64; 3]> = vs.iter().copied().collect();
+    assert_eq!(distinct.len(), vs.len(), "duplicate vertices");
+    let mut used = vec![false; vs.len()];
+    fn mark(v: &Value, used: &mut [bool]) {
+        match v {
+            Value::Array(items) => items.iter().for_each(|i| mark(i, used)),
+            Value::Number(n) => used[n.as_u64().expect("an index") as usize] = true,
+            _ => panic!("boundaries hold arrays and indices only"),
+        }
+    }
+    for object in doc["CityObjects"].as_object().expect("objects").values() {
+        for g in object["geometry"].as_array().into_iter().flatten() {
+            mark(&g["boundaries"], &mut used);
+        }
+    }
+    assert!(used.iter().all(|&u| u), "unused vertices");
+}
+
+/// Asserts that every solid of every geometry in the file encloses a positive volume: its
+/// shell faces outwards.
+fn assert_outward(name: &str, doc: &Value) {
+    let v = vertices(doc);
+    for (id, object) in doc["CityObjects"].as_object().expect("objects") {
+        for g in object["geometry"].as_array().into_iter().flatten() {
+            for (shell, _) in solids(g) {
+                let volume = signed_volume(&shell, &v);
+                assert!(
+                    volume > 0.0,
+                    "{name}: {id} has a shell facing inwards ({volume} m³)"
+                );
+            }
+        }
+    }
+}
+
+/// Counts of semantic surface types over all faces of a geometry object.
+fn surface_counts(geometry: &Value) -> BTreeMap<String, usize> {
+    let mut counts = BTreeMap::new();
+    for (_, kinds) in solids(geometry) {
+        for k in kinds {
+            *counts.entry(k).or_default() += 1;
+        }
+    }
+    counts
+}
+
+// ---------------------------------------------------------------------------------------------
+// The validators.
+
+/// The cjval version of `crates/vsg/Cargo.toml`, for the messages.
+const CJVAL: &str = "0.10.0";
+
+/// cjval's checks of `text`; asserts that every check ran and passed: no error, no warning.
+fn assert_cjval_valid(name: &str, text: &str) {
+    let validator = cjval::CJValidator::from_str(text);
+    let summary = validator.validate();
+    let (mut errors, mut warnings) = (0, 0);
+    let mut report = String::new();
+    for (check, result) in &summary {
+        let n = result.errors.len();
+        if result.is_warning() {
+            warnings += n;
+        } else {
+            errors += n;
+        }
+        report += &format!("{check}: {:?} {:?}\n", result.status, result.errors);
+    }
+    assert_eq!((errors, warnings), (0, 0), "cjval: {name}:\n{report}");
+    // Every check ran (later ones are skipped after an error) and passed.
+    assert!(
+        summary.values().all(|r| r.is_valid()),
+        "cjval: {name}:\n{report}"
+    );
+    eprintln!(
+        "cjval {CJVAL}: {name}: valid, {errors} errors, {warnings} warnings ({} checks passed)",
+        summary.len()
+    );
+}
+
+const HOW: &str = "install Python 3 with its venv module (Debian: python3-venv), or run \
+                   `python3 -m venv tools/cjio/.venv && tools/cjio/.venv/bin/pip install -r \
+                   tools/cjio/requirements.txt` from the repository root";
+
+/// The cjio program, or `None` (after saying why) when it cannot run outside CI. The venv is
+/// made and the pinned requirements installed on first use.
+fn cjio() -> Option<PathBuf> {
+    static INSTALL: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools/cjio");
+    match INSTALL.get_or_init(|| install_cjio(&dir)) {
+        Ok(exe) => Some(exe.clone()),
+        Err(why) => {
+            if std::env::var_os("CI").is_some() {
+                panic!("cannot run cjio: {why}; {HOW}");
+            }
+            eprintln!("SKIPPED cjio: {why}; {HOW}");
+            None
+        }
+    }
+}
+
+fn install_cjio(dir: &Path) -> Result<PathBuf, String> {
+    let venv = dir.join(".venv");
+    let exe = venv.join("bin/cjio");
+    if exe.is_file() {
+        return Ok(exe);
+    }
+    let run = |cmd: &mut Command, what: &str| -> Result<(), String> {
+        let out = cmd
+            .output()
+            .map_err(|e| format!("cannot run {what}: {e}"))?;
+        if out.status.success() {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} failed: {}",
+                String::from_utf8_lossy(&out.stderr).trim()
+            ))
+        }
+    };
+    run(
+        Command::new("python3").args(["-m", "venv"]).arg(&venv),
+        "`python3 -m venv`",
+    )?;
+    run(
+        Command::new(venv.join("bin/python"))
+            .args([
+                "-m",
+                "pip",
+                "install",
+                "--quiet",
+                "--disable-pip-version-check",
+            ])
+            .arg("-r")
+            .arg(dir.join("requirements.txt")),
+        "`pip install -r tools/cjio/requirements.txt`",
+    )?;
+    if exe.is_file() {
+        Ok(exe)
+    } else {
+        Err(format!("pip installed no {}", exe.display()))
+    }
+}
+
+/// `cjio FILE info --long` on `text`, or `None` when cjio cannot run here.
+fn cjio_info(name: &str, text: &str) -> Option<String> {
+    let exe = cjio()?;
+    let nanos = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    let stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+    let file = format!("castellan-{stem}-{}-{nanos}.city.json", std::process::id());
+    let path = std::env::temp_dir().join(file);
+    std::fs::write(&path, text).expect("write the temporary file");
+    let out = Command::new(&exe)
+        .arg(&path)
+        .args(["info", "--long"])
+        .output()
+        .expect("run cjio");
+    let _ = std::fs::remove_file(&path);
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "cjio cannot read {name}:\n{stdout}\n{stderr}"
+    );
+    assert!(
+        !stderr.contains("Error") && !stdout.contains("Error"),
+        "cjio: {name}:\n{stdout}\n{stderr}"
+    );
+    eprintln!("cjio info --long: {name}:\n{stdout}");
+    Some(stdout)
+}
+
+/// Asserts that cjio reads the file as one Building with `parts` BuildingParts and
+/// `vertices` vertices, in CityJSON 2.0.
+fn assert_cjio_reads(name: &str, text: &str, parts: usize, vertices: usize) {
+    let Some(info) = cjio_info(name, text) else {
+        return;
+    };
+    let lines: Vec<&str> = info.lines().map(str::trim).collect();
+    for expected in [
+        "CityJSON version = 2.0".to_string(),
+        "|-- Building (1)".to_string(),
+        format!("|-- BuildingPart ({parts})"),
+        format!("vertices_total = {vertices}"),
+    ] {
+        assert!(
+            lines.contains(&expected.as_str()),
+            "{expected:?} in\n{info}"
+        );
+    }
+}
+
+/// Both validators on one file.
+fn assert_valid(name: &str, text: &str, doc: &Value) {
+    assert_cjval_valid(name, text);
+    let parts = doc["CityObjects"]
+        .as_object()
+        .expect("objects")
+        .values()
+        .filter(|o| o["type"] == "BuildingPart")
+        .count();
+    let vertices = doc["vertices"].as_array().expect("vertices").len();
+    assert_cjio_reads(name, text, parts, vertices);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The tests.
+
+#[test]
+fn a_block_under_a_roof_has_exact_counts_volumes_and_surfaces() {
+    let mut h = heritage("Block");
+    h.frame.metres_per_unit = 0.5;
+    let (text, doc) = write(&block().0, &h);
+    let objects = doc["CityObjects"].as_object().expect("objects");
+    assert_eq!(objects.len(), 2);
+    let part = &objects["Block-block"];
+    assert_eq!(part["type"], "BuildingPart");
+    assert_eq!(part["parents"], serde_json::json!(["Block"]));
+    assert_eq!(
+        objects["Block"]["children"],
+        serde_json::json!(["Block-block"])
+    );
+    // 8 corners of the masonry and the 4 top corners of the roof: the 4 they share are one.
+    assert_eq!(doc["vertices"].as_array().map(Vec::len), Some(12));
+    assert_vertices_unique_and_used(&doc);
+    assert_eq!(
+        doc["transform"]["scale"],
+        serde_json::json!([0.001, 0.001, 0.001])
+    );
+    // Model x ∈ [−2, 2], z ∈ [−1, 1], y ∈ [0, 4] units of 0.5 m: east, north, up.
+    assert_eq!(
+        doc["metadata"]["geographicalExtent"],
+        serde_json::json!([-1.0, -0.5, 0.0, 1.0, 0.5, 2.0])
+    );
+    assert_eq!(
+        doc["transform"]["translate"],
+        serde_json::json!([-1.0, -0.5, 0.0])
+    );
+    assert_eq!(doc["metadata"]["title"], "Block");
+    assert!(doc["metadata"].get("referenceSystem").is_none());
+
+    let geometry = part["geometry"].as_array().expect("geometry");
+    assert_eq!(geometry.len(), 1, "no windows: LoD 2 only");
+    assert_eq!(geometry[0]["lod"], "2");
+    let v = vertices(&doc);
+    let solids = solids(&geometry[0]);
+    assert_eq!(solids.len(), 2);
+    let expected = [4.0 * 3.0 * 2.0, 4.0 * 1.0 * 2.0].map(|units| units * 0.125);
+    for ((shell, _), volume) in solids.iter().zip(expected) {
+        assert_eq!(shell.len(), 6, "a box's six faces, each one quad");
+        assert!(shell.iter().all(|s| s.len() == 1 && s[0].len() == 4));
+        assert!(is_closed(shell));
+        let from_file = signed_volume(shell, &v);
+        assert!(
+            ((from_file - volume) / volume).abs() < 1e-6,
+            "{from_file} m³ in the file, {volume} m³ from the primitive"
+        );
+    }
+    let counts = surface_counts(&geometry[0]);
+    let expected: BTreeMap<String, usize> = [
+        ("WallSurface", 8),
+        ("GroundSurface", 1),
+        ("OuterFloorSurface", 1),
+        ("RoofSurface", 1),
+        ("OuterCeilingSurface", 1),
+    ]
+    .map(|(k, n)| (k.to_string(), n))
+    .into();
+    assert_eq!(counts, expected);
+    let surfaces = geometry[0]["semantics"]["surfaces"]
+        .as_array()
+        .expect("surfaces");
+    assert_eq!(surfaces.len(), 6, "one per type and terminal symbol");
+    for s in surfaces {
+        let class = s["castellan_class"].as_str().expect("a class");
+        let symbol = s["vsg_symbol"].as_str().expect("a symbol");
+        match symbol {
+            "block.masonry" => assert_eq!(class, "wall"),
+            "block.roof" => assert_eq!(class, "roof"),
+            other => panic!("unexpected symbol {other}"),
+        }
+    }
+    let attributes = &part["attributes"];
+    assert_eq!(attributes["castellan_kind"], "block");
+    assert_eq!(attributes["terminals"], 2);
+    assert!((attributes["volume_m3"].as_f64().expect("volume") - 4.0).abs() < 1e-12);
+    assert!((attributes["mass_kg"].as_f64().expect("mass") - 2400.0 * 3.0).abs() < 1e-9);
+    assert_valid("block", &text, &doc);
+}
+
+#[test]
+fn the_castle_has_its_parts_windows_in_lod3_only_and_outward_solids() {
+    let model = castle().0;
+    let parts = vec![
+        Part {
+            more_nodes: Vec::new(),
+            node: 1,
+            name: "keep".into(),
+            kind: "keep".into(),
+            attributes: BTreeMap::from([
+                ("label".to_string(), Attribute::Text("Donjon".into())),
+                ("height_m".to_string(), Attribute::Number(13.0)),
+                ("measured".to_string(), Attribute::Flag(true)),
+            ]),
+        },
+        Part {
+            more_nodes: Vec::new(),
+            node: 2,
+            name: "tower 1".into(),
+            kind: "tower".into(),
+            attributes: BTreeMap::new(),
+        },
+        Part {
+            more_nodes: Vec::new(),
+            node: 3,
+            name: "curtain".into(),
+            kind: "curtain wall".into(),
+            attributes: BTreeMap::new(),
+        },
+        Part {
+            more_nodes: Vec::new(),
+            node: 4,
+            name: "ruin".into(),
+            kind: "ruin".into(),
+            attributes: BTreeMap::new(),
+        },
+    ];
+    let h = Heritage {
+        name: "Château d'essai".into(),
+        parts,
+        frame: Frame::default(),
+        attributes: BTreeMap::from([("source".to_string(), Attribute::Text("plan.png".into()))]),
+    };
+    let (text, doc) = write(&model, &h);
+    let objects = doc["CityObjects"].as_object().expect("objects");
+    assert_eq!(objects.len(), 5);
+    let building = &objects["Ch_teau_d_essai"];
+    assert_eq!(building["attributes"]["source"], "plan.png");
+    let ids = [
+        "Ch_teau_d_essai-keep",
+        "Ch_teau_d_essai-tower_1",
+        "Ch_teau_d_essai-curtain",
+        "Ch_teau_d_essai-ruin",
+    ];
+    assert_eq!(building["children"], serde_json::json!(ids));
+    for id in ids {
+        assert_eq!(
+            objects[id]["parents"],
+            serde_json::json!(["Ch_teau_d_essai"])
+        );
+    }
+    let keep = &objects[ids[0]];
+    assert_eq!(keep["attributes"]["label"], "Donjon");
+    assert_eq!(keep["attributes"]["height_m"], 13.0);
+    assert_eq!(keep["attributes"]["measured"], true);
+    assert_eq!(keep["attributes"]["castellan_kind"], "keep");
+    assert_eq!(keep["attributes"]["terminals"], 6);
+    assert_eq!(
+        objects[ids[2]]["attributes"]["castellan_kind"],
+        "curtain wall"
+    );
+    // The ruin has no drawn terminal: no geometry.
+    assert!(objects[ids[3]].get("geometry").is_none());
+
+    // The keep: LoD 2 without the windows and the door, LoD 3 with them.
+    let geometry = keep["geometry"].as_array().expect("keep geometry");
+    assert_eq!(geometry.len(), 2);
+    assert_eq!(
+        (&geometry[0]["lod"], &geometry[1]["lod"]),
+        (&"2".into(), &"3".into())
+    );
+    let (lod2, lod3) = (surface_counts(&geometry[0]), surface_counts(&geometry[1]));
+    assert_eq!(solids(&geometry[0]).len(), 3);
+    assert_eq!(solids(&geometry[1]).len(), 6);
+    assert!(!lod2.contains_key("Window") && !lod2.contains_key("Door"));
+    assert_eq!(lod3.get("Window"), Some(&12), "two windows of six faces");
+    assert_eq!(lod3.get("Door"), Some(&6));
+    for kind in ["WallSurface", "RoofSurface", "GroundSurface"] {
+        assert_eq!(lod2.get(kind), lod3.get(kind), "{kind}");
+    }
+    // The masonry's 4 sides and each ramp's 2 gable triangles and 1 back face are walls; each
+    // ramp's slope is a roof; the masonry's top under the roof is a ledge, the ramps' bottoms
+    // the eaves' undersides.
+    assert_eq!(lod2.get("WallSurface"), Some(&(4 + 2 * 3)));
+    assert_eq!(lod2.get("RoofSurface"), Some(&2));
+    assert_eq!(lod2.get("GroundSurface"), Some(&1));
+    assert_eq!(lod2.get("OuterFloorSurface"), Some(&1));
+    assert_eq!(lod2.get("OuterCeilingSurface"), Some(&2));
+    // The tower's floor slab: roofed, so an interior floor and ceiling.
+    let tower = surface_counts(&objects[ids[1]]["geometry"][0]);
+    assert_eq!(tower.get("FloorSurface"), Some(&1));
+    assert_eq!(tower.get("CeilingSurface"), Some(&1));
+    assert_eq!(tower.get("RoofSurface"), Some(&32), "the cone's 32 sides");
+    // The curtain has no roof: its walk is an outer floor, the wall tops are its roofs.
+    let curtain = surface_counts(&objects[ids[2]]["geometry"][0]);
+    assert_eq!(curtain.get("OuterFloorSurface"), Some(&1));
+    assert_eq!(curtain.get("RoofSurface"), Some(&2));
+
+    // Every solid of every geometry: closed, outward (positive volume), the primitive's volume
+    // to the grid's precision.
+    let v = vertices(&doc);
+    let mut count = 0;
+    for id in ids {
+        for g in objects[id]["geometry"].as_array().into_iter().flatten() {
+            for (shell, _) in solids(g) {
+                assert!(is_closed(&shell), "{id}: an open or misoriented shell");
+                let volume = signed_volume(&shell, &v);
+                assert!(volume > 0.0, "{id}: a shell facing inwards ({volume} m³)");
+                count += 1;
+            }
+        }
+    }
+    // LoD 2: 3 keep + 3 tower + 3 curtain; LoD 3: 6 keep.
+    assert_eq!(count, 15);
+    assert_vertices_unique_and_used(&doc);
+    assert_valid("castle", &text, &doc);
+}
+
+#[test]
+fn a_placed_model_has_its_reference_system_and_map_coordinates() {
+    let mut h = heritage("Placed");
+    h.frame = Frame {
+        metres_per_unit: 1.0,
+        placement: Some(Placement {
+            origin: [700_000.0, 6_600_000.0, 80.0],
+            epsg: 2154,
+            rotation_deg: 90.0,
+        }),
+    };
+    let (text, doc) = write(&block().0, &h);
+    assert_eq!(
+        doc["metadata"]["referenceSystem"],
+        "https://www.opengis.net/def/crs/EPSG/0/2154"
+    );
+    // Turned 90° clockwise: the model's x (±2) runs south, its −z (±1) east.
+    let extent: Vec<f64> =
+        serde_json::from_value(doc["metadata"]["geographicalExtent"].clone()).expect("extent");
+    let expected = [699_999.0, 6_599_998.0, 80.0, 700_001.0, 6_600_002.0, 84.0];
+    for (a, b) in extent.iter().zip(expected) {
+        assert!((a - b).abs() < 1e-6, "{extent:?} vs {expected:?}");
+    }
+    let translate: Vec<f64> =
+        serde_json::from_value(doc["transform"]["translate"].clone()).expect("translate");
+    assert!((translate[0] - 699_999.0).abs() < 1e-6 && (translate[2] - 80.0).abs() < 1e-9);
+    // Every vertex is a corner of the boxes where the frame puts it, to the millimetre.
+    let corners: Vec<[f64; 3]> = [(0.0, 3.0), (3.0, 4.0)]
+        .iter()
+        .flat_map(|&(y0, y1)| {
+            [-2.0, 2.0].into_iter().flat_map(move |x| {
+                [y0, y1]
+                    .into_iter()
+                    .flat_map(move |y| [-1.0, 1.0].map(|z| h.frame.to_world([x, y, z])))
+            })
+        })
+        .collect();
+    for p in vertices(&doc) {
+        assert!(
+            corners
+                .iter()
+                .any(|c| (0..3).all(|k| (c[k] - p[k]).abs() <= 0.0005 + 1e-9)),
+            "{p:?} is no corner"
+        );
+    }
+    // A rotation keeps the shells outward.
+    let v = vertices(&doc);
+    for (shell, _) in solids(&doc["CityObjects"]["Placed-block"]["geometry"][0]) {
+        assert!(signed_volume(&shell, &v) > 0.0);
+    }
+    assert_valid("placed", &text, &doc);
+}
+
+#[test]
+fn every_primitive_type_is_a_closed_outward_solid() {
+    use ShapeType::*;
+    let samples = [
+        (Box, vec![4.0, 3.0, 2.0]),
+        (Ramp, vec![4.0, 3.0, 2.0]),
+        (RampFrustum, vec![4.0, 3.0, 2.0, 1.5]),
+        (Parallelepiped, vec![4.0, 3.0, 2.0, 0.5, 0.3, -0.4]),
+        (Cylinder, vec![2.0, 3.0]),
+        (ExtrudedRing, vec![2.0, 3.0, 1.2]),
+        (ExtrudedFan, vec![2.0, 3.0, 2.0]),
+        (CylindricalSector, vec![2.0, 3.0, 1.2, 2.0]),
+        (Cone, vec![2.0, 3.0]),
+        (ConicFrustum, vec![2.0, 3.0, 1.0]),
+        (ConicRing, vec![2.0, 3.0, 1.0, 1.5]),
+        (ConicFan, vec![2.0, 3.0, 2.0]),
+        (ConicSector, vec![2.0, 3.0, 2.0, 1.0, 0.8]),
+        (Tetrahedron, vec![3.0, 2.0, 2.5, 1.2]),
+        (TetrahedronFrustum, vec![3.0, 2.0, 2.5, 1.2, 1.5]),
+        (TetrahedronSector, vec![3.0, 2.0, 2.5, 1.2, 1.5, 1.0]),
+        (Sphere, vec![2.0]),
+        (SphericalSector, vec![2.0, 2.0, 1.2]),
+    ];
+    let mut t = Tree::new("Zoo");
+    let kids: Vec<_> = samples
+        .iter()
+        .enumerate()
+        .map(|(i, (kind, params))| {
+            let turn = Isometry3::new(
+                Vector3::new(i as f64 * 5.0, 2.0, 0.0),
+                Vector3::new(0.3, 0.2 * i as f64, 0.1),
+            );
+            (kind.name(), Terminal, prim(*kind, params), turn, 0)
+        })
+        .collect();
+    t.children(0, &kids);
+    let (text, doc) = write(&t.0, &heritage("Zoo"));
+    let objects = doc["CityObjects"].as_object().expect("objects");
+    assert_eq!(objects.len(), 1 + samples.len());
+    let v = vertices(&doc);
+    for (id, object) in objects {
+        if object["type"] == "Building" {
+            continue;
+        }
+        let solids = solids(&object["geometry"][0]);
+        assert_eq!(solids.len(), 1, "{id}");
+        let (shell, _) = &solids[0];
+        assert!(is_closed(shell), "{id}");
+        let volume = signed_volume(shell, &v);
+        let expected = object["attributes"]["volume_m3"].as_f64().expect("volume");
+        // Meshes approximate curved primitives, and the grid moves vertices by ≤ 0.5 mm.
+        assert!(
+            volume > 0.0 && ((volume - expected) / expected).abs() < 0.05,
+            "{id}: {volume} m³ in the file, {expected} m³ exact"
+        );
+    }
+    assert_vertices_unique_and_used(&doc);
+    assert_valid("all-primitives", &text, &doc);
+}
+
+#[test]
+fn non_finite_coordinates_are_an_error() {
+    let mut model = block().0;
+    model.nodes[2].world.translation.vector.x = f64::NAN;
+    let err = to_cityjson(&model, &heritage("Bad"), &ExportOptions::default());
+    assert!(matches!(err, Err(ExportError::NotFinite { .. })), "{err:?}");
+    let mut h = heritage("Bad");
+    h.frame.metres_per_unit = f64::INFINITY;
+    let err = to_cityjson(&block().0, &h, &ExportOptions::default());
+    assert!(matches!(err, Err(ExportError::NotFinite { .. })), "{err:?}");
+    // Finite but too far apart for integer millimetres in a double.
+    let mut model = block().0;
+    model.nodes[2].world.translation.vector.x = 1e14;
+    let err = to_cityjson(&model, &heritage("Far"), &ExportOptions::default());
+    assert!(matches!(err, Err(ExportError::NotFinite { .. })), "{err:?}");
+}
+
+#[test]
+fn an_empty_model_is_a_valid_building_without_parts() {
+    let (text, doc) = write(&Model::default(), &heritage(""));
+    let objects = doc["CityObjects"].as_object().expect("objects");
+    assert_eq!(objects.len(), 1);
+    assert_eq!(objects["building"]["type"], "Building");
+    assert_eq!(doc["vertices"], serde_json::json!([]));
+    assert_cjval_valid("empty", &text);
+}
+
+/// Imports resolve inside `library/`.
+struct LibraryDir(PathBuf);
+
+impl vsg::import::Resolver for LibraryDir {
+    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
+        std::fs::read_to_string(self.0.join(path))
+            .map(|t| (path.to_string(), t))
+            .map_err(|e| e.to_string())
+    }
+}
+
+fn run(name: &str, src: &str) -> Model {
+    let library = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library");
+    vsg::run_with(
+        name,
+        src,
+        &vsg::RunOptions::default(),
+        &mut LibraryDir(library),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.render(name, src)))
+}
+
+/// A castle like the Coucy demo's `model.vsg` (`castellan demo`): the library's round towers,
+/// keeps with windows and gatehouse imported once per structure with their own parameters,
+/// and curtain runs and room blocks as the demo writes them, each a child of the axiom.
+const COUCY_LIKE: &str = r#"
+import "round_tower.vsg" as tower1 (radius = 11.5, height = 35.7, wall = 4.9, floors = 9, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 16.1, overhang = 0.4);
+import "round_tower.vsg" as tower2 (radius = 11.5, height = 35.7, wall = 4.7, floors = 9, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 16.1, overhang = 0.4);
+import "round_tower.vsg" as keep1 (radius = 16.2, height = 53.5, wall = 6.8, floors = 13, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 22.6, overhang = 0.4);
+import "keep.vsg" as chapel1 (width = 30.1, depth = 21.5, height = 8, wall = 4.3, floorH = 4, floorT = 0.4, windows = 4, windowW = 1.2, windowH = 1.6, sill = 0.8, roofH = 7.5);
+import "keep.vsg" as range4 (width = 11.8, depth = 11.2, height = 6, wall = 3.4, floorH = 3, floorT = 0.4, windows = 1, windowW = 1.2, windowH = 1.2, sill = 0.6, roofH = 3.9);
+import "gatehouse.vsg" as gate1 ();
+float curtainH = 14;
+float curtainT = 3;
+float curtainParapetH = 1.8;
+float curtainMerlon = 1.4;
+float curtainWalkT = 0.2;
+float roomRoofT = 0.5;
+Axiom ::
+    T(0, 0, 0) I("box", {1, 1, 1})
+    T(60, 0, 0) I("box", {1, 1, 1})
+    T(30, 0, 60) I("box", {1, 1, 1})
+    T(30, 0, 25) I("box", {1, 1, 1})
+    T(85, 0, 40) R(0, 0.4, 0) I("box", {1, 1, 1})
+    T(30, 0, -12) I("box", {1, 1, 1})
+    T(30, curtainH/2, 0) I("box", {37, curtainH, curtainT})
+    T(5, curtainH/2, 30) R(0, 1.2, 0) I("box", {40, curtainH, curtainT})
+    T(70, 3, 70) R(0, -0.3, 0) I("box", {12, 6, 9})
+    {tower1Site, tower2Site, keep1Site, chapel1Site, range4Site, gate1Site, curtain1, curtain2, range5};
+tower1Site :: {tower1.Axiom};
+tower2Site :: {tower2.Axiom};
+keep1Site :: {keep1.Axiom};
+chapel1Site :: {chapel1.Axiom};
+range4Site :: {range4.Axiom};
+gate1Site :: {gate1.Axiom};
+curtain1 :: {curtain};
+curtain2 :: {curtain};
+range5 :: {roomBlock};
+curtain :: split("Y", {~1, curtainParapetH}){wallStone, curtainTop};
+curtainTop :: split("Z", {~1, ~4}){curtainParapet, curtainWalkZone};
+curtainParapet :: repeat("X", {~curtainMerlon, ~curtainMerlon}){wallStone, curtainCrenel};
+curtainCrenel :: split("Y", {~4, ~5}){wallStone, opening};
+curtainWalkZone :: split("Y", {curtainWalkT, ~1}){curtainWalk, opening};
+curtainWalk :: appearance("color", {0.5, 0.47, 0.42}){j3d.terminal};
+roomBlock :: split("Y", {~1, roomRoofT}){wallStone, roof};
+opening :: void(){j3d.terminal};
+roof :: appearance("color", {0.55, 0.2, 0.15}){j3d.terminal};
+wallStone :: appearance("color", {0.76, 0.72, 0.64}, "density", 2200){j3d.terminal};
+"#;
+
+#[test]
+fn a_coucy_like_castle_is_valid() {
+    let model = run("coucy_like.vsg", COUCY_LIKE);
+    let mut h = heritage("Coucy-like castle");
+    h.frame.placement = Some(Placement {
+        origin: [717_000.0, 6_935_000.0, 150.0],
+        epsg: 2154,
+        rotation_deg: 12.0,
+    });
+    let start = Instant::now();
+    let text = to_cityjson(&model, &h, &ExportOptions::default()).expect("export succeeds");
+    let elapsed = start.elapsed();
+    let doc: Value = serde_json::from_str(&text).expect("JSON");
+    eprintln!(
+        "coucy-like: {} bytes, {} vertices, written in {:.3} s (debug build)",
+        text.len(),
+        doc["vertices"].as_array().map_or(0, Vec::len),
+        elapsed.as_secs_f64()
+    );
+    let objects = doc["CityObjects"].as_object().expect("objects");
+    assert_eq!(objects.len(), 1 + 9);
+    let part = |name: &str| &objects[&format!("Coucy-like_castle-{name}")];
+    // The keeps of the library have windows: LoD 2 and 3; the towers and curtains LoD 2 only.
+    for (name, lods) in [
+        ("chapel1Site", 2),
+        ("range4Site", 2),
+        ("tower1Site", 1),
+        ("keep1Site", 1),
+        ("curtain1", 1),
+        ("range5", 1),
+    ] {
+        assert_eq!(
+            part(name)["geometry"].as_array().map(Vec::len),
+            Some(lods),
+            "{name}"
+        );
+    }
+    let lod3 = surface_counts(&part("chapel1Site")["geometry"][1]);
+    assert!(lod3.get("Window").is_some_and(|&n| n > 0), "{lod3:?}");
+    let tower = surface_counts(&part("tower1Site")["geometry"][0]);
+    for kind in [
+        "RoofSurface",
+        "WallSurface",
+        "GroundSurface",
+        "FloorSurface",
+    ] {
+        assert!(tower.contains_key(kind), "{kind} in {tower:?}");
+    }
+    let curtain = surface_counts(&part("curtain1")["geometry"][0]);
+    assert!(curtain.contains_key("OuterFloorSurface"), "{curtain:?}");
+    // Masses from the densities: the curtains' and the room block's stone.
+    let mass = part("curtain1")["attributes"]["mass_kg"]
+        .as_f64()
+        .expect("mass");
+    let volume = part("curtain1")["attributes"]["volume_m3"]
+        .as_f64()
+        .expect("volume");
+    assert!(mass > 0.0 && (mass / volume - 2200.0).abs() < 2200.0 * 0.5);
+    assert_vertices_unique_and_used(&doc);
+    assert_outward("coucy-like", &doc);
+    assert_valid("coucy-like", &text, &doc);
+}
+
+/// The repository's example castle and the library's programs, run as a user would.
+#[test]
+fn example_and_library_programs_are_valid() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for path in [
+        "examples/castle.vsg",
+        "library/keep.vsg",
+        "library/round_tower.vsg",
+        "library/gatehouse.vsg",
+        "library/curtain_wall.vsg",
+    ] {
+        let src = std::fs::read_to_string(root.join(path)).expect("the program exists");
+        let model = run(path, &src);
+        let (text, doc) = write(&model, &heritage(path));
+        assert_vertices_unique_and_used(&doc);
+        assert_outward(path, &doc);
+        assert_valid(path, &text, &doc);
+    }
+}
