@@ -48,7 +48,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::cityjson_geometry::{Face, MAX_INTEGER, Pool, SCALE, Vertices, WorldMesh, faces};
+use super::cityjson_geometry::{Face, MAX_INTEGER, Pool, SCALE, Vertices, FileMesh, faces};
 use super::common::check_model;
 use super::error::ExportError;
 use super::options::ExportOptions;
@@ -209,7 +209,7 @@ fn drawn_meshes(
                 }
             }
         }
-        let mesh = WorldMesh {
+        let mesh = FileMesh {
             points: world,
             triangles,
         };
@@ -219,7 +219,7 @@ fn drawn_meshes(
 }
 
 /// Per part, its drawn terminals' node ids and meshes.
-type PartMeshes = Vec<Vec<(NodeId, WorldMesh)>>;
+type PartMeshes = Vec<Vec<(NodeId, FileMesh)>>;
 
 /// A `BuildingPart` without geometry: its parent and attributes, the computed ones
 /// (`castellan_kind`, `volume_m3`, `mass_kg`, `terminals`) over any of the part's own of the

@@ -30,7 +30,7 @@ const SAME_NORMAL: f64 = 1e-9;
 const SAME_PLANE: f64 = 1e-6;
 
 /// A terminal's mesh in the file's frame (metres, x east, y north, z up), before quantisation.
-pub(super) struct WorldMesh {
+pub(super) struct FileMesh {
     pub points: Vec<[f64; 3]>,
     pub triangles: Vec<[u32; 3]>,
 }
@@ -140,7 +140,7 @@ struct Tri {
 }
 
 /// The faces of one closed mesh on the grid of `pool` (which gains its vertices).
-pub(super) fn faces(mesh: &WorldMesh, pool: &mut Pool) -> Vec<Face> {
+pub(super) fn faces(mesh: &FileMesh, pool: &mut Pool) -> Vec<Face> {
     let ids: Vec<u32> = mesh.points.iter().map(|&p| pool.intern(p)).collect();
     let tris: Vec<Tri> = mesh
         .triangles
@@ -309,7 +309,7 @@ mod tests {
     use super::*;
 
     /// A unit cube (metres) with two triangles per side, counter-clockwise from outside.
-    fn cube(size: f64) -> WorldMesh {
+    fn cube(size: f64) -> FileMesh {
         let points = (0..8)
             .map(|i| [i & 1, (i >> 1) & 1, (i >> 2) & 1].map(|b| b as f64 * size))
             .collect();
@@ -325,7 +325,7 @@ mod tests {
             .iter()
             .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
             .collect();
-        WorldMesh { points, triangles }
+        FileMesh { points, triangles }
     }
 
     #[test]
@@ -375,7 +375,7 @@ mod tests {
             triangles.push([o, i2, i]);
         }
         let mut pool = Pool::new([0.0; 3]);
-        let faces = faces(&WorldMesh { points, triangles }, &mut pool);
+        let faces = faces(&FileMesh { points, triangles }, &mut pool);
         assert_eq!(faces.len(), 1);
         let rings = &faces[0].rings;
         assert_eq!(rings.len(), 2);

@@ -317,7 +317,7 @@ fn textures_are_embedded_with_real_scale_uvs() {
         mesh: &box_mesh,
         volume: &box_volume,
     };
-    let glb = super::gltf::write_glb(&model, &options, &textures, &geometry).unwrap();
+    let glb = super::gltf::write_glb(&model, &options, &textures, None, &geometry).unwrap();
     let (json, bin) = parse_glb(&glb);
     assert_eq!(json["images"].as_array().unwrap().len(), 1);
     assert_eq!(json["textures"].as_array().unwrap().len(), 1);
@@ -370,7 +370,8 @@ fn textures_are_embedded_with_real_scale_uvs() {
     }
 
     // Without texture images the export is unchanged.
-    let plain = super::gltf::write_glb(&model, &options, &Textures::new(), &geometry).unwrap();
+    let plain =
+        super::gltf::write_glb(&model, &options, &Textures::new(), None, &geometry).unwrap();
     let (plain_json, _) = parse_glb(&plain);
     assert!(plain_json.get("images").is_none());
     assert!(

@@ -198,6 +198,7 @@ fn glb_with(model: &Model, mesh: &dyn Fn(&Primitive) -> TriMesh) -> Vec<u8> {
         model,
         &ExportOptions::default(),
         &Textures::new(),
+        None,
         &geometry,
     )
     .expect("export succeeds")
@@ -232,7 +233,8 @@ fn broken_references_are_errors() {
     let options = ExportOptions::default();
     let mut model = castle();
     model.nodes[5].appearance = 9;
-    let err = super::gltf::write_glb(&model, &options, &Textures::new(), &geometry).unwrap_err();
+    let err =
+        super::gltf::write_glb(&model, &options, &Textures::new(), None, &geometry).unwrap_err();
     assert!(matches!(
         err,
         ExportError::BadReference {
@@ -253,7 +255,8 @@ fn broken_references_are_errors() {
         mesh: &bad_mesh,
         volume: &box_volume,
     };
-    let err = super::gltf::write_glb(&castle(), &options, &Textures::new(), &geometry).unwrap_err();
+    let err =
+        super::gltf::write_glb(&castle(), &options, &Textures::new(), None, &geometry).unwrap_err();
     assert!(
         matches!(err, ExportError::BadMesh { kind: "box", .. }),
         "{err}"
