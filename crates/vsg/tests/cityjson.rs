@@ -416,35 +416,9 @@ fn surface_counts(geometry: &Value) -> BTreeMap<String, usize> {
 // ---------------------------------------------------------------------------------------------
 // The validators.
 
-/// The cjval version of `crates/vsg/Cargo.toml`, for the messages.
-const CJVAL: &str = "0.10.0";
-
-/// cjval's checks of `text`; asserts that every check ran and passed: no error, no warning.
-fn assert_cjval_valid(name: &str, text: &str) {
-    let validator = cjval::CJValidator::from_str(text);
-    let summary = validator.validate();
-    let (mut errors, mut warnings) = (0, 0);
-    let mut report = String::new();
-    for (check, result) in &summary {
-        let n = result.errors.len();
-        if result.is_warning() {
-            warnings += n;
-        } else {
-            errors += n;
-        }
-        report += &format!("{check}: {:?} {:?}\n", result.status, result.errors);
-    }
-    assert_eq!((errors, warnings), (0, 0), "cjval: {name}:\n{report}");
-    // Every check ran (later ones are skipped after an error) and passed.
-    assert!(
-        summary.values().all(|r| r.is_valid()),
-        "cjval: {name}:\n{report}"
-    );
-    eprintln!(
-        "cjval {CJVAL}: {name}: valid, {errors} errors, {warnings} warnings ({} checks passed)",
-        summary.len()
-    );
-}
+#[path = "support/cjval.rs"]
+mod cjval_check;
+use cjval_check::assert_cjval_valid;
 
 const HOW: &str = "install Python 3 with its venv module (Debian: python3-venv), or run \
                    `python3 -m venv tools/cjio/.venv && tools/cjio/.venv/bin/pip install -r \

@@ -48,7 +48,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::cityjson_geometry::{Face, MAX_INTEGER, Pool, SCALE, Vertices, FileMesh, faces};
+use super::cityjson_geometry::{Face, FileMesh, MAX_INTEGER, Pool, SCALE, Vertices, faces};
 use super::common::check_model;
 use super::error::ExportError;
 use super::options::ExportOptions;
