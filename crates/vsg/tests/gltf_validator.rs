@@ -82,9 +82,7 @@ fn assert_valid_with(name: &str, model: &Model, textures: &Textures) {
 
 /// Validates a written GLB: no errors, no warnings. Returns the report (`None` when skipped).
 fn assert_valid_glb(name: &str, glb: &[u8]) -> Option<serde_json::Value> {
-    let Some(script) = validator() else {
-        return None;
-    };
+    let script = validator()?;
     let nanos = SystemTime::now()
         .duration_since(UNIX_EPOCH)
         .map_or(0, |d| d.as_nanos());

@@ -479,7 +479,6 @@ impl Builder {
             others: [("EXT_mesh_features".to_string(), Features::mesh_features())]
                 .into_iter()
                 .collect(),
-            ..Default::default()
         });
         let primitive = json::mesh::Primitive {
             attributes: attributes
