@@ -18,73 +18,18 @@ use serde_json::Value;
 use vsg::export::semantics::{Attribute, Frame, Heritage, Part, Placement};
 use vsg::export::{ExportError, ExportOptions, to_cityjson};
 use vsg::shape::{Primitive, ShapeType};
-use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
+use vsg::tree::{Appearance, Model, NodeState};
 
 // ---------------------------------------------------------------------------------------------
 // Models built by hand, child group by child group, as the interpreter builds them.
 
-struct Tree(Model);
+#[path = "support/tree.rs"]
+mod tree;
+use tree::{Tree, at};
 
-/// A child: symbol, state, shape, frame relative to the parent, appearance.
-type Kid<'a> = (&'a str, NodeState, Option<Primitive>, Isometry3<f64>, u32);
-
-impl Tree {
-    fn new(symbol: &str) -> Tree {
-        Tree(Model {
-            nodes: vec![node(0, None, Isometry3::identity(), None)],
-            symbols: vec![symbol.to_owned()],
-            appearances: vec![Appearance::default()],
-            ..Default::default()
-        })
-    }
-
-    /// Gives `parent` the children `kids` and returns the id of the first.
-    fn children(&mut self, parent: NodeId, kids: &[Kid]) -> NodeId {
-        let first = self.0.nodes.len() as NodeId;
-        let p = &mut self.0.nodes[parent as usize];
-        (p.state, p.first_child, p.child_count) =
-            (NodeState::NonTerminal, first, kids.len() as u32);
-        let (world, depth) = (p.world, p.depth + 1);
-        for (index, &(name, state, shape, local, appearance)) in kids.iter().enumerate() {
-            self.0.symbols.push(name.to_owned());
-            let symbol = self.0.symbols.len() as u32 - 1;
-            let mut n = node(symbol, shape, world * local, Some(parent));
-            n.local = local;
-            (n.state, n.appearance, n.depth, n.index) = (state, appearance, depth, index as u32);
-            self.0.nodes.push(n);
-        }
-        first
-    }
-}
-
-fn node(
-    symbol: u32,
-    shape: Option<Primitive>,
-    world: Isometry3<f64>,
-    parent: Option<NodeId>,
-) -> Node {
-    Node {
-        symbol,
-        rule_line: 1,
-        shape,
-        local: world,
-        world,
-        appearance: 0,
-        state: NodeState::Terminal,
-        parent,
-        first_child: 0,
-        child_count: 0,
-        depth: 0,
-        index: 0,
-    }
-}
-
+/// A primitive as the children's `Option`, so that shapeless nodes (`None`) sit beside them.
 fn prim(kind: ShapeType, params: &[f64]) -> Option<Primitive> {
-    Some(Primitive::new(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}")))
-}
-
-fn at(x: f64, y: f64, z: f64) -> Isometry3<f64> {
-    Isometry3::translation(x, y, z)
+    Some(tree::prim(kind, params))
 }
 
 use NodeState::{NonTerminal, Terminal, VoidTerminal};

@@ -10,8 +10,12 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use nalgebra::{Isometry3, Vector3};
 use vsg::export::{ExportOptions, TextureImage, Textures, to_glb_with_textures};
-use vsg::shape::{Primitive, ShapeType};
-use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
+use vsg::shape::ShapeType;
+use vsg::tree::{Appearance, Model, NodeState};
+
+#[path = "support/tree.rs"]
+mod tree;
+use tree::{Tree, at, prim};
 
 const HOW: &str = "install Node.js 20+ and run `npm ci --prefix tools/gltf-validator` \
                    from the repository root";
@@ -107,82 +111,10 @@ fn assert_valid_glb(name: &str, glb: &[u8]) -> Option<serde_json::Value> {
     Some(report)
 }
 
-/// Builds models child group by child group, like the interpreter does.
-struct Tree(Model);
-
-impl Tree {
-    fn new(symbol: &str, shape: Option<Primitive>) -> Tree {
-        let model = Model {
-            nodes: vec![node(
-                0,
-                shape,
-                Isometry3::identity(),
-                Isometry3::identity(),
-                None,
-            )],
-            symbols: vec![symbol.to_owned()],
-            appearances: vec![Appearance::default()],
-            ..Default::default()
-        };
-        Tree(model)
-    }
-
-    fn children(
-        &mut self,
-        parent: NodeId,
-        kids: &[(&str, NodeState, Primitive, Isometry3<f64>, u32)],
-    ) -> NodeId {
-        let first = self.0.nodes.len() as NodeId;
-        let p = &mut self.0.nodes[parent as usize];
-        (p.state, p.first_child, p.child_count) =
-            (NodeState::NonTerminal, first, kids.len() as u32);
-        let (world, depth) = (p.world, p.depth + 1);
-        for (index, &(name, state, shape, local, appearance)) in kids.iter().enumerate() {
-            self.0.symbols.push(name.to_owned());
-            let symbol = self.0.symbols.len() as u32 - 1;
-            let mut n = node(symbol, Some(shape), local, world * local, Some(parent));
-            (n.state, n.appearance, n.depth, n.index) = (state, appearance, depth, index as u32);
-            self.0.nodes.push(n);
-        }
-        first
-    }
-}
-
-fn node(
-    symbol: u32,
-    shape: Option<Primitive>,
-    local: Isometry3<f64>,
-    world: Isometry3<f64>,
-    parent: Option<NodeId>,
-) -> Node {
-    Node {
-        symbol,
-        rule_line: 3,
-        shape,
-        local,
-        world,
-        appearance: 0,
-        state: NodeState::Terminal,
-        parent,
-        first_child: 0,
-        child_count: 0,
-        depth: 0,
-        index: 0,
-    }
-}
-
-fn prim(kind: ShapeType, params: &[f64]) -> Primitive {
-    Primitive::new(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}"))
-}
-
-fn at(x: f64, y: f64, z: f64) -> Isometry3<f64> {
-    Isometry3::translation(x, y, z)
-}
-
 #[test]
 fn box_castle_with_void_and_transparent_parts_is_valid() {
     use NodeState::*;
-    let mut t = Tree::new("Castle", Some(prim(ShapeType::Box, &[10.0, 4.0, 6.0])));
+    let mut t = Tree::with_shape("Castle", prim(ShapeType::Box, &[10.0, 4.0, 6.0]));
     t.0.appearances.push(Appearance {
         color: [0.6, 0.7, 0.9],
         transparency: 0.4,
@@ -227,7 +159,7 @@ fn box_castle_with_void_and_transparent_parts_is_valid() {
 
 #[test]
 fn cylinders_and_boxes_are_valid() {
-    let mut t = Tree::new("Temple", Some(prim(ShapeType::Box, &[12.0, 6.0, 8.0])));
+    let mut t = Tree::with_shape("Temple", prim(ShapeType::Box, &[12.0, 6.0, 8.0]));
     let column = prim(ShapeType::Cylinder, &[0.4, 5.0]);
     let kids: Vec<_> = (0..8)
         .map(|i| {
@@ -274,7 +206,7 @@ fn every_primitive_type_is_valid() {
         prim(Sphere, &[2.0]),
         prim(SphericalSector, &[2.0, 2.0, 1.2]),
     ];
-    let mut t = Tree::new("Zoo", None);
+    let mut t = Tree::new("Zoo");
     let kids: Vec<_> = samples
         .iter()
         .enumerate()
@@ -299,7 +231,7 @@ fn empty_model_is_valid() {
 
 #[test]
 fn model_of_void_terminals_only_is_valid() {
-    let mut t = Tree::new("Ruin", Some(prim(ShapeType::Box, &[2.0; 3])));
+    let mut t = Tree::with_shape("Ruin", prim(ShapeType::Box, &[2.0; 3]));
     let hole = prim(ShapeType::Box, &[1.0; 3]);
     t.children(
         0,
@@ -368,7 +300,7 @@ fn png(width: u32, height: u32) -> TextureImage {
 #[test]
 fn textured_model_with_embedded_images_is_valid() {
     use NodeState::*;
-    let mut t = Tree::new("Castle", Some(prim(ShapeType::Box, &[10.0, 4.0, 6.0])));
+    let mut t = Tree::with_shape("Castle", prim(ShapeType::Box, &[10.0, 4.0, 6.0]));
     for texture in ["brick.png", "stone.png"] {
         t.0.appearances.push(Appearance {
             color: [0.9, 0.8, 0.7],

@@ -15,8 +15,12 @@ use nalgebra::{Isometry3, Vector3};
 use serde_json::Value;
 use vsg::export::semantics::{Attribute, Frame, Heritage, Part, Placement, world_mesh};
 use vsg::export::{ExportError, ExportOptions, to_ifc};
-use vsg::shape::{Primitive, ShapeType, Tessellation};
-use vsg::tree::{Appearance, Model, Node, NodeId, NodeState};
+use vsg::shape::{ShapeType, Tessellation};
+use vsg::tree::{Appearance, Model, NodeId, NodeState};
+
+#[path = "support/tree.rs"]
+mod tree;
+use tree::{Tree, at, prim};
 
 #[path = "support/ifcopenshell.rs"]
 mod ifcopenshell;
@@ -37,64 +41,6 @@ fn guids(ifc: &str) -> Vec<String> {
             (g.ends_with('\'') && !g[..22].contains(['\'', ',', ' '])).then(|| g[..22].into())
         })
         .collect()
-}
-
-/// Builds models child group by child group, like the interpreter does.
-struct Tree(Model);
-
-impl Tree {
-    fn new(symbol: &str) -> Tree {
-        Tree(Model {
-            nodes: vec![node(0, None, Isometry3::identity(), None)],
-            symbols: vec![symbol.to_owned()],
-            appearances: vec![Appearance::default()],
-            ..Default::default()
-        })
-    }
-
-    fn children(&mut self, parent: NodeId, kids: &[Kid]) -> NodeId {
-        let first = self.0.nodes.len() as NodeId;
-        let p = &mut self.0.nodes[parent as usize];
-        (p.state, p.first_child, p.child_count) =
-            (NodeState::NonTerminal, first, kids.len() as u32);
-        let (world, depth) = (p.world, p.depth + 1);
-        for (index, &(name, state, shape, local, appearance)) in kids.iter().enumerate() {
-            self.0.symbols.push(name.to_owned());
-            let symbol = self.0.symbols.len() as u32 - 1;
-            let mut n = node(symbol, Some(shape), world * local, Some(parent));
-            n.local = local;
-            (n.state, n.appearance, n.depth, n.index) = (state, appearance, depth, index as u32);
-            self.0.nodes.push(n);
-        }
-        first
-    }
-}
-
-type Kid<'a> = (&'a str, NodeState, Primitive, Isometry3<f64>, u32);
-
-fn node(symbol: u32, shape: Option<Primitive>, world: Isometry3<f64>, p: Option<NodeId>) -> Node {
-    Node {
-        symbol,
-        rule_line: 3,
-        shape,
-        local: world,
-        world,
-        appearance: 0,
-        state: NodeState::Terminal,
-        parent: p,
-        first_child: 0,
-        child_count: 0,
-        depth: 0,
-        index: 0,
-    }
-}
-
-fn prim(kind: ShapeType, params: &[f64]) -> Primitive {
-    Primitive::new(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}"))
-}
-
-fn at(x: f64, y: f64, z: f64) -> Isometry3<f64> {
-    Isometry3::translation(x, y, z)
 }
 
 /// A keep of boxes (every class, a room, two arrow slits) turned about y, and a round tower
