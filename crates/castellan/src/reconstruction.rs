@@ -21,6 +21,8 @@ pub struct Summary {
     pub terminals: usize,
     pub report: PathBuf,
     pub model: PathBuf,
+    /// What looks implausible (`integrate::plausibility`), also printed to stderr.
+    pub warnings: Vec<String>,
 }
 
 pub fn print_summary(s: &Summary) {
@@ -105,5 +107,6 @@ pub fn reconstruct(
         terminals: r.exports.terminals,
         report: outdir.join("index.html"),
         model: outdir.join("model.glb"),
+        warnings: r.warnings.iter().map(ToString::to_string).collect(),
     })
 }

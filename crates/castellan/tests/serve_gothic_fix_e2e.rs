@@ -42,25 +42,39 @@ fn gothic_elements_are_dragged_deleted_and_undone_in_chromium() {
     let found = figures["elements"].as_u64().unwrap();
     assert_eq!(figures["after_delete"].as_u64(), Some(found - 1));
     assert_eq!(figures["after_undo"].as_u64(), Some(found));
+    assert_eq!(figures["after_add"].as_u64(), Some(found + 1));
     for shot in ["gothic.png", "gothic-corrected.png"] {
         let img = image::open(shots.join(shot)).unwrap();
         assert!(img.width() > 100 && img.height() > 100, "{shot}");
     }
-    // PROJECT.toml: the photo as a [[gothic]] entry, marked as an elevation, with one
-    // correction — the apex, where the page dragged it; the undone deletion is gone.
+    // PROJECT.toml: the photo as a [[gothic]] entry, marked as an elevation, with two
+    // corrections — the apex, where the page dragged it, and the element added by its box; the
+    // undone deletion is gone.
     let text = std::fs::read_to_string(dir.join("PROJECT.toml")).unwrap();
     let project = Project::parse_unchecked(&text).unwrap();
     assert_eq!(project.gothics.len(), 1, "{text}");
     let g = &project.gothics[0];
     assert_eq!(g.image, "portal.png");
     assert!(g.rectified);
-    assert_eq!(g.elements.len(), 1, "{text}");
+    assert_eq!(g.elements.len(), 2, "{text}");
     let c = &g.elements[0];
     assert!(!c.delete && !c.add);
     let wanted = figures["apex"]["wanted"].as_f64().unwrap();
     let apex = c.apex.expect("the dragged apex is saved");
     assert!((apex - wanted).abs() <= 1.5, "{apex} vs {wanted}");
     assert!((figures["apex"]["returned"].as_f64().unwrap() - apex).abs() <= 0.05);
+    let added = &g.elements[1];
+    assert!(added.add && !added.delete, "{text}");
+    let (apex, sill) = (added.apex.unwrap(), added.sill.unwrap());
+    assert!((apex - figures["added"]["apex"].as_f64().unwrap()).abs() <= 0.05);
+    assert!((sill - figures["added"]["sill"].as_f64().unwrap()).abs() <= 0.05);
+    // Drawn as an equilateral pointed arch, or all arch when the box is lower than that.
+    let (width, springing) = (added.width.unwrap(), added.springing.unwrap());
+    let rise = springing - apex;
+    assert!(
+        (rise - (3f64.sqrt() / 2.0 * width).min(sill - apex)).abs() <= 0.2,
+        "{text}"
+    );
     // The façade photos of the demo are untouched.
     assert_eq!(project.facades.len(), 2);
 }

@@ -127,17 +127,24 @@ pub fn integrate(inputs: &Inputs) -> Result<Integrated, IntegrateError> {
             .to_rectified(c.facade_point)
             .ok_or_else(|| fail("facade_point maps to infinity under the rectification".into()))?;
         let facade = facade_at(&est.model, q).ok_or_else(|| {
+            // Said in the photo's pixels, the ones the user clicked (issue 22): each façade's
+            // extent there, as the serve page outlines it.
             let found: Vec<String> = est
-                .model
-                .facades
+                .outlines_in_photo()
                 .iter()
-                .map(|f| format!("{:?}", f.bbox.map(|v| v.round())))
+                .flatten()
+                .map(|quad| {
+                    let xs = quad.map(|p| p[0]);
+                    let ys = quad.map(|p| p[1]);
+                    let lo = |v: [f64; 4]| v.into_iter().fold(f64::INFINITY, f64::min).round();
+                    let hi = |v: [f64; 4]| v.into_iter().fold(f64::NEG_INFINITY, f64::max).round();
+                    format!("x {}–{}, y {}–{}", lo(xs), hi(xs), lo(ys), hi(ys))
+                })
                 .collect();
             fail(format!(
-                "facade_point {:?} (rectified {:?}) is not inside any façade found in the photo (found, rectified pixels: {})",
+                "facade_point {:?} is not inside any façade found in the photo (photo pixels; the façades found span {})",
                 c.facade_point,
-                q.map(|v| v.round()),
-                if found.is_empty() { "none".into() } else { found.join(", ") }
+                if found.is_empty() { "nothing".into() } else { found.join("; ") }
             ))
         })?;
         mappings[target].push(Mapping {

@@ -59,6 +59,30 @@ impl FacadeEstimate {
     pub fn to_rectified(&self, p: [f64; 2]) -> Option<[f64; 2]> {
         facade::rectify::apply(&self.homography, p[0], p[1]).map(|(x, y)| [x, y])
     }
+
+    /// Each façade found, as the quadrilateral of the photo's pixels that rectifies to its box
+    /// (corners clockwise from the top left): where a correspondence's `facade_point` may land
+    /// (issue 22). `None` for a façade whose corner the rectification sends to infinity.
+    pub fn outlines_in_photo(&self) -> Vec<Option<[[f64; 2]; 4]>> {
+        let back = self.homography.try_inverse();
+        self.model
+            .facades
+            .iter()
+            .map(|f| {
+                let back = back.as_ref()?;
+                let [x0, y0, x1, y1] = f.bbox;
+                let mut quad = [[0.0; 2]; 4];
+                for (q, (x, y)) in quad
+                    .iter_mut()
+                    .zip([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                {
+                    let (u, v) = facade::rectify::apply(back, x, y)?;
+                    *q = [u, v];
+                }
+                Some(quad)
+            })
+            .collect()
+    }
 }
 
 /// A photo after §3.1.1.

@@ -324,3 +324,77 @@ fn a_gothic_facade_replaces_the_keeps_wall_with_its_arches() {
         stats.by_symbol
     );
 }
+
+/// Issue 22: where a correspondence's photo click may land is said in the photo's pixels — the
+/// façades' outlines there (the serve page draws them), and the refusal of a click outside.
+#[test]
+fn a_click_outside_the_facades_is_refused_in_photo_pixels() {
+    let castle = Castle::default();
+    let plan = plan::parse(
+        &image::DynamicImage::ImageLuma8(castle.plan()),
+        &plan::Options::default(),
+    )
+    .unwrap();
+    let photo = castle.photo(20.0, 0.12, 1);
+    let name = "keep_south_near.png";
+    let estimate = estimate_facade(&FacadePhoto {
+        name,
+        image: &photo.image,
+        training: &photo.training,
+        lines: None,
+        rectified: false,
+        bbox: None,
+        metres_per_pixel: None,
+        seed: 7,
+        classifier: Default::default(),
+        fixes: &Default::default(),
+    })
+    .unwrap();
+    let outlines = estimate.outlines_in_photo();
+    assert_eq!(outlines.len(), estimate.model.facades.len());
+    // Each outline rectifies back onto its façade's box, corner by corner.
+    for (quad, f) in outlines.iter().zip(&estimate.model.facades) {
+        let quad = quad.expect("a finite outline");
+        let [x0, y0, x1, y1] = f.bbox;
+        for (p, want) in quad.iter().zip([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) {
+            let q = estimate.to_rectified(*p).unwrap();
+            assert!((q[0] - want[0]).abs() < 1e-6 && (q[1] - want[1]).abs() < 1e-6);
+        }
+    }
+    // The synthetic castle's own click lands inside an outline (the quadrilateral is convex).
+    let inside = |quad: &[[f64; 2]; 4], p: [f64; 2]| {
+        (0..4).all(|i| {
+            let (a, b) = (quad[i], quad[(i + 1) % 4]);
+            (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0.0
+        })
+    };
+    assert!(
+        outlines
+            .iter()
+            .flatten()
+            .any(|q| inside(q, photo.facade_point))
+    );
+    let corner = [1.0, 1.0];
+    assert!(!outlines.iter().flatten().any(|q| inside(q, corner)));
+    let run = |facade_point| {
+        integrate(&Inputs {
+            plan: &plan,
+            plan_image: "plan.png",
+            scale: GivenScale::MetresPerPixel(castle.metres_per_pixel),
+            facades: std::slice::from_ref(&estimate),
+            gothics: &[],
+            correspondences: &[Correspondence {
+                facade: name.into(),
+                facade_point,
+                plan_points: vec![castle.keep_south_point()],
+            }],
+            structure_fixes: &[],
+        })
+    };
+    assert!(run(photo.facade_point).is_ok());
+    let e = run(corner).err().expect("a click outside").to_string();
+    assert!(
+        e.contains("[1.0, 1.0]") && e.contains("photo pixels") && e.contains("span x "),
+        "{e}"
+    );
+}

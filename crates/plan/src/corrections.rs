@@ -39,7 +39,8 @@ pub struct MergeFix {
     pub points: [[f64; 2]; 2],
 }
 
-/// The corrections of one plan, in the order they apply: merges, labels, towers.
+/// The corrections of one plan, in the order they apply: merges, towers, then labels (regions,
+/// then walls), so that the user's labels have the last word.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct PlanFixes<'a> {
     pub merges: &'a [MergeFix],
@@ -100,33 +101,6 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
         merge(plan, a, b).map_err(fail)?;
     }
     let mut changed = false;
-    for (i, l) in fixes.labels.iter().enumerate() {
-        let fail = |why: String| FixError {
-            table: FixTable::Label,
-            index: i + 1,
-            why,
-        };
-        check_point(plan, l.point).map_err(fail)?;
-        if l.label.is_wall() {
-            let e = wall_at(plan, l.point).ok_or_else(|| {
-                fail(format!(
-                    "{} is a wall's label and [{}, {}] is on no wall; a region is one of {}",
-                    l.label.name(),
-                    l.point[0],
-                    l.point[1],
-                    region_labels()
-                ))
-            })?;
-            plan.edges[e].label = l.label;
-            changed = true;
-            continue;
-        }
-        let f = region_at(plan, l.point)
-            .ok_or_else(|| no_region(l.point))
-            .map_err(fail)?;
-        relabel(plan, f, l.label);
-        changed = true;
-    }
     for (i, t) in fixes.towers.iter().enumerate() {
         let fail = |why: String| FixError {
             table: FixTable::Tower,
@@ -154,6 +128,40 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
         } else {
             add_tower(plan, t.point, t.radius).map_err(fail)?;
         }
+        changed = true;
+    }
+    // The user's labels have the last word: towers added or removed relabel rooms and their
+    // walls, so the labels apply after them, regions first and then walls (a region's label
+    // gives its walls §5.1.6's labels, which a wall's own label then overrules).
+    let mut walls = Vec::new();
+    for (i, l) in fixes.labels.iter().enumerate() {
+        let fail = |why: String| FixError {
+            table: FixTable::Label,
+            index: i + 1,
+            why,
+        };
+        check_point(plan, l.point).map_err(fail)?;
+        if l.label.is_wall() {
+            let e = wall_at(plan, l.point).ok_or_else(|| {
+                fail(format!(
+                    "{} is a wall's label and [{}, {}] is on no wall; a region is one of {}",
+                    l.label.name(),
+                    l.point[0],
+                    l.point[1],
+                    region_labels()
+                ))
+            })?;
+            walls.push((e, l.label));
+            continue;
+        }
+        let f = region_at(plan, l.point)
+            .ok_or_else(|| no_region(l.point))
+            .map_err(fail)?;
+        relabel(plan, f, l.label);
+        changed = true;
+    }
+    for (e, label) in walls {
+        plan.edges[e].label = label;
         changed = true;
     }
     if changed || !fixes.merges.is_empty() {

@@ -96,6 +96,60 @@ fn a_wall_label_goes_on_the_wall_at_the_point() {
     assert_eq!(p.label_at(340, 60), Label::TowerRoom);
 }
 
+/// Labels have the last word (issue 22's simulated user found corrections undoing others): a
+/// wall's label survives the relabelling of its region and a tower added beside it, and a
+/// region's label survives a tower removed there.
+#[test]
+fn the_users_labels_outlast_towers_and_region_labels() {
+    let mut p = parsed();
+    let wall = [ROOM_WALL.0 as f64, ROOM_WALL.1 as f64];
+    // In the list, the wall's label comes before its room's; the tower entries after both.
+    let labels = [
+        LabelFix {
+            point: wall,
+            label: Label::ChapelWall,
+        },
+        LabelFix {
+            point: ROOM,
+            label: Label::GreatHall,
+        },
+    ];
+    let towers = [TowerFix {
+        point: ROOM,
+        radius: None,
+        remove: true,
+    }];
+    apply(
+        &mut p,
+        PlanFixes {
+            labels: &labels,
+            towers: &towers,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(p.label_at(340, 60), Label::GreatHall);
+    assert_eq!(p.label_at(ROOM_WALL.0, ROOM_WALL.1), Label::ChapelWall);
+    // A tower added in the room: the room's own label still wins, and so does its wall's.
+    let towers = [TowerFix {
+        point: ROOM,
+        radius: None,
+        remove: false,
+    }];
+    let mut q = parsed();
+    apply(
+        &mut q,
+        PlanFixes {
+            labels: &labels,
+            towers: &towers,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(q.label_at(340, 60), Label::GreatHall);
+    assert_eq!(q.label_at(ROOM_WALL.0, ROOM_WALL.1), Label::ChapelWall);
+}
+
 #[test]
 fn errors_name_the_entry_and_what_is_wrong() {
     let mut p = parsed();

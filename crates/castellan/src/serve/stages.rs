@@ -181,6 +181,8 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
         Ok(Json(json!({
             "overlay": file_url(&overlay), "facades": e.model.facades.len(),
             "floors": floors, "windows": windows, "ms": t.elapsed().as_millis(),
+            // Where a correspondence's photo click may land (photo pixels, issue 22).
+            "outlines": e.outlines_in_photo(),
         })))
     })
     .await
@@ -225,6 +227,8 @@ pub async fn reconstruct(State(app): State<Arc<App>>) -> Reply {
             "structures": s.estimate.structures.len(),
             "terminals": s.terminals,
             "stages_ms": stages,
+            // The plausibility warnings, shown on the page as in the report (issue 22).
+            "warnings": s.warnings,
         })))
     })
     .await

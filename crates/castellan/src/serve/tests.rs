@@ -417,6 +417,18 @@ async fn the_facade_stages_write_their_overlays() {
     assert_eq!(s, StatusCode::OK, "{f}");
     // The keep's south façade has 3 floors of 4 windows (examples/demo/TRUTH.json).
     assert!(f["windows"].as_u64().unwrap() >= 12, "{f}");
+    // One outline per façade, in the photo's pixels, holding the demo's own click (issue 22:
+    // the page shows where a correspondence's photo point may land).
+    let outlines = f["outlines"].as_array().unwrap();
+    assert_eq!(outlines.len() as u64, f["facades"].as_u64().unwrap(), "{f}");
+    let holds = |q: &Value, [x, y]: [f64; 2]| {
+        let xs: Vec<f64> = (0..4).map(|i| q[i][0].as_f64().unwrap()).collect();
+        let ys: Vec<f64> = (0..4).map(|i| q[i][1].as_f64().unwrap()).collect();
+        let within = |v: &[f64], t: f64| v.iter().any(|&a| a <= t) && v.iter().any(|&a| a >= t);
+        within(&xs, x) && within(&ys, y)
+    };
+    assert!(outlines.iter().any(|q| holds(q, [255.0, 235.0])), "{f}");
+    assert!(!outlines.iter().any(|q| holds(q, [2.0, 2.0])), "{f}");
     assert_eq!(
         get(&app, f["overlay"].as_str().unwrap()).await.0,
         StatusCode::OK
@@ -523,4 +535,30 @@ async fn the_live_probability_map_follows_the_boxes_and_writes_nothing() {
     .await;
     assert_eq!(s, StatusCode::NOT_FOUND);
     assert_eq!(folder(dir.path()), before, "a preview writes nothing");
+}
+
+/// Issue 22: the plausibility warnings reach the page with the reconstruction, as the report
+/// and the command line give them.
+#[tokio::test]
+async fn reconstruct_passes_its_warnings_to_the_page() {
+    let dir = tempfile::tempdir().unwrap();
+    // A drawing whose ink makes no wall graph: one black disc.
+    let disc = image::GrayImage::from_fn(300, 200, |x, y| {
+        let (dx, dy) = (f64::from(x) - 150.0, f64::from(y) - 100.0);
+        image::Luma([if dx * dx + dy * dy < 900.0 { 0 } else { 255 }])
+    });
+    disc.save(dir.path().join("disc.png")).unwrap();
+    std::fs::write(dir.path().join("PROJECT.toml"), "plan = \"disc.png\"\n").unwrap();
+    let app = app(dir.path(), 1 << 20);
+    let (s, r) = json(&app, "POST", "/api/reconstruct", "").await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    let warnings = r["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{r}");
+    assert!(
+        warnings[0]
+            .as_str()
+            .unwrap()
+            .starts_with("no walls were read from disc.png"),
+        "{r}"
+    );
 }

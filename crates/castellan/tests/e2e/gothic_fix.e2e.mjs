@@ -1,7 +1,7 @@
 // End-to-end test of the Gothic step of `castellan serve` (issue 22) in Debian's Chromium
 // (headless, via playwright-core): a synthetic Gothic photo uploaded from the page, its elements
 // found, one window's apex dragged up, another window deleted with the Delete key, the deletion
-// undone — with assertions on the elements the server returns and on PROJECT.toml.
+// undone, an element added by dragging its box — with assertions on the elements the server returns and on PROJECT.toml.
 // Run by crates/castellan/tests/serve_gothic_fix_e2e.rs, which starts the server and passes:
 //   CASTELLAN_URL  the server's URL      SCREENSHOTS  folder for the PNGs
 //   CHROMIUM       the browser binary    GOTHIC_PHOTO the photo to upload
@@ -119,6 +119,33 @@ try {
   const toml3 = await projectToml();
   check(!/delete = true/.test(toml3) && /apex = /.test(toml3), `PROJECT.toml after undo:\n${toml3}`);
   check((await page.textContent('#gothic-info')).includes('detection kept'), 'corrections do not detect again');
+
+  // Add an element the detector did not find: a box dragged on plain wall, clear of every
+  // element found (their bounding boxes grown by 4 px).
+  const [cw, ch] = await page.locator(canvas).evaluate((e) => [e.width, e.height]);
+  const [bw, bh] = [Math.round(cw / 12), Math.round(ch / 8)];
+  const clear = (x, y) => afterUndo.every((e) => x + bw < e.centre - e.width / 2 - 4 || x > e.centre + e.width / 2 + 4
+    || y + bh < e.apex - 4 || y > e.sill + 4);
+  let spot = null;
+  for (let y = 4; y + bh < ch - 4 && !spot; y += 4) {
+    for (let x = 4; x + bw < cw - 4 && !spot; x += 4) if (clear(x, y)) spot = [x, y];
+  }
+  check(spot, 'a patch of plain wall for the new element');
+  await page.click('#gothic-add');
+  check(await page.getAttribute(canvas, 'data-adding') === 'true', 'add mode is on');
+  await page.mouse.move(...await at(spot));
+  await page.mouse.down();
+  await page.mouse.move(...await at([spot[0] + bw, spot[1] + bh]), { steps: 6 });
+  await page.mouse.up();
+  await saved(4);
+  const afterAdd = await elements();
+  figures.after_add = afterAdd.length;
+  const made = afterAdd.find((e) => Math.abs(e.centre - (spot[0] + bw / 2)) <= 1.5 && Math.abs(e.apex - spot[1]) <= 1.5);
+  figures.added = made ? { centre: made.centre, apex: made.apex, sill: made.sill, width: made.width } : null;
+  check(made, `the added element comes back where it was drawn: ${JSON.stringify(afterAdd)}`);
+  check(Math.abs(made.sill - (spot[1] + bh)) <= 1.5 && Math.abs(made.width - bw) <= 1.5, 'with the drawn sill and width');
+  check(await page.getAttribute(canvas, 'data-adding') === 'false', 'add mode ends with the box');
+  check(/add = true/.test(await projectToml()), 'the addition is saved');
   figures.info = await page.textContent('#gothic-info');
   check(errors.length === 0, `page errors: ${errors.join('; ')}`);
 } finally {

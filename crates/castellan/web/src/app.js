@@ -597,18 +597,46 @@ $('facade-run').addEventListener('click', async () => {
   const r = await step('Façade search', () => api('POST', `/api/facades/${encodeURIComponent(name)}/facade`));
   if (!r) return;
   $('facade-info').textContent = `${r.facades} façade(s), ${r.floors} floor(s), ${r.windows} window(s) in ${r.ms} ms`;
+  state.outlines[name] = (r.outlines || []).filter(Boolean);
+  drawCorrespondences();
   await showOverlay('facade-overlay', r.overlay);
   markDone('facades');
 });
 
 // ---- 3 correspondences
 let redrawCorrPhoto = () => {};
+state.outlines = {}; // photo name → the façades found, quadrilaterals in photo pixels
+
+// The façades found in the photo, dashed: a correspondence's photo point must fall in one.
+function drawOutlines(ctx, quads) {
+  ctx.save();
+  ctx.strokeStyle = '#00c853';
+  ctx.lineWidth = Math.max(2, ctx.canvas.width / 300);
+  ctx.setLineDash([ctx.lineWidth * 4, ctx.lineWidth * 3]);
+  for (const q of quads) {
+    ctx.beginPath();
+    q.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+    ctx.closePath();
+    ctx.stroke();
+  }
+  ctx.restore();
+}
+
+// Inside a convex quadrilateral, whichever way round its corners go.
+function inQuad(q, [x, y]) {
+  const side = q.map((a, i) => {
+    const b = q[(i + 1) % q.length];
+    return Math.sign((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]));
+  });
+  return side.every((s) => s >= 0) || side.every((s) => s <= 0);
+}
 let redrawCorrPlan = () => {};
 
 function drawCorrespondences() {
   const photo = state.photos[state.facade];
   if (photo) {
     redrawCorrPhoto = canvasImage($('corr-photo'), photo, (ctx) => {
+      drawOutlines(ctx, state.outlines[state.facade] || []);
       for (const c of state.corr) if (c.facade === state.facade) cross(ctx, c.facade_point, '#1565c0');
       if (state.pending && state.pending.facade === state.facade) cross(ctx, state.pending.facade_point, '#ff6d00');
     });
@@ -634,7 +662,15 @@ function drawCorrespondences() {
 
 $('corr-photo').addEventListener('click', (ev) => {
   if (!state.facade) return;
-  state.pending = { facade: state.facade, facade_point: toImagePixels($('corr-photo'), ev), plan_points: [] };
+  const point = toImagePixels($('corr-photo'), ev);
+  const quads = state.outlines[state.facade];
+  // Once the façade search has run, a click outside every façade it found would be refused
+  // by the reconstruction: say so here, in the photo the user sees.
+  if (quads && !quads.some((q) => inQuad(q, point))) {
+    status(`(${point.map((v) => v.toFixed(0)).join(', ')}) is outside the façades found (dashed green): click inside one`, true);
+    return;
+  }
+  state.pending = { facade: state.facade, facade_point: point, plan_points: [] };
   redrawCorrPhoto();
   redrawCorrPlan();
 });
@@ -684,6 +720,12 @@ $('reconstruct').addEventListener('click', async () => {
   if (!r) return;
   const times = Object.entries(r.stages_ms).map(([k, v]) => `${k} ${v} ms`).join(', ');
   $('reconstruct-info').textContent = `${r.structures} structures, ${r.terminals} terminals (${times})`;
+  // What looks implausible, as the report and the command line say it.
+  $('reconstruct-warnings').replaceChildren(...(r.warnings || []).map((w) => {
+    const li = document.createElement('li');
+    li.textContent = `Warning: ${w}`;
+    return li;
+  }));
   showOutputs(r.outputs);
   markDone('model');
 });

@@ -2,7 +2,10 @@
 // drawn over the rectified façade, each with three handles — the springing line, the apex and
 // the width — to drag, and a delete key; every change is saved at once as PROJECT.toml's
 // `[[gothic.element]]` (rectified photo pixels) and the server sends the elements back
-// regrouped (detection is not re-run). Undo goes back one saved list.
+// regrouped (detection is not re-run). An element the detector missed is added by dragging its
+// box in add mode (a pointed arch whose rise is that of an equilateral arch, or the box's
+// height when lower; its handles are then dragged as any other's). Undo goes back one saved
+// list.
 
 const $ = (id) => document.getElementById(id);
 const HANDLE = { apex: '#ff9100', springing: '#00b0ff', width: '#ffd600' };
@@ -66,7 +69,7 @@ export function setupGothic({ api, step, upload, refresh }) {
   const ctx = canvas.getContext('2d');
   const state = {
     name: null, image: null, offset: [0, 0], elements: [], corrections: [], undo: [],
-    selected: null, drag: null, saves: 0,
+    selected: null, drag: null, saves: 0, adding: false, box: null,
   };
 
   function info(text, error = false) {
@@ -107,7 +110,16 @@ export function setupGothic({ api, step, upload, refresh }) {
         ctx.strokeRect(x - off[0] - s, y - off[1] - s, 2 * s, 2 * s);
       }
     }
+    if (state.box) {
+      const [[ax, ay], [bx, by]] = state.box;
+      ctx.strokeStyle = '#00e676';
+      ctx.lineWidth = 2;
+      ctx.setLineDash([8, 4]);
+      ctx.strokeRect(Math.min(ax, bx) - off[0], Math.min(ay, by) - off[1], Math.abs(bx - ax), Math.abs(by - ay));
+      ctx.setLineDash([]);
+    }
     canvas.dataset.elements = JSON.stringify(state.elements);
+    canvas.dataset.adding = String(state.adding);
     canvas.dataset.corrections = String(state.corrections.length);
     canvas.dataset.selected = state.selected === null ? '' : String(state.selected);
     $('gothic-undo').disabled = state.undo.length === 0;
@@ -233,6 +245,31 @@ export function setupGothic({ api, step, upload, refresh }) {
     canvas.dataset.state = 'ready';
   }
 
+  // The entry for an element whose box was dragged from `a` to `b` (rectified pixels), or
+  // null when the box is too small to be meant.
+  function added([a, b]) {
+    const round = (v) => Math.round(v * 10) / 10;
+    const [x0, x1] = [Math.min(a[0], b[0]), Math.max(a[0], b[0])];
+    const [apex, sill] = [Math.min(a[1], b[1]), Math.max(a[1], b[1])];
+    const width = x1 - x0;
+    if (width < 4 || sill - apex < 4) return null;
+    // An equilateral pointed arch rises √3/2 of its span; a box lower than that is all arch.
+    const springing = Math.min(sill, apex + (Math.sqrt(3) / 2) * width);
+    const centre = (x0 + x1) / 2;
+    return {
+      point: [round(centre), round((springing + sill) / 2)], add: true,
+      springing: round(springing), apex: round(apex), width: round(width), centre: round(centre), sill: round(sill),
+    };
+  }
+
+  function setAdding(on) {
+    state.adding = on;
+    state.box = null;
+    $('gothic-add').classList.toggle('active', on);
+    $('gothic-add').textContent = on ? 'Adding: drag the new element\'s box (Esc to stop)' : 'Add an element';
+    draw();
+  }
+
   function deleteSelected() {
     const e = state.elements.find((x) => x.id === state.selected);
     if (!e) return;
@@ -242,6 +279,11 @@ export function setupGothic({ api, step, upload, refresh }) {
 
   canvas.addEventListener('mousedown', (ev) => {
     const p = rectified(ev);
+    if (state.adding) {
+      state.box = [p, p];
+      draw();
+      return;
+    }
     const h = handleAt(p);
     if (h) {
       state.selected = h.element.id;
@@ -255,6 +297,11 @@ export function setupGothic({ api, step, upload, refresh }) {
   });
 
   canvas.addEventListener('mousemove', (ev) => {
+    if (state.adding && state.box) {
+      state.box = [state.box[0], rectified(ev)];
+      draw();
+      return;
+    }
     const d = state.drag;
     if (!d) return;
     const [x, y] = rectified(ev);
@@ -269,6 +316,13 @@ export function setupGothic({ api, step, upload, refresh }) {
   });
 
   window.addEventListener('mouseup', () => {
+    if (state.adding && state.box) {
+      const entry = added(state.box);
+      setAdding(false);
+      if (entry) save([...state.corrections.map((c) => ({ ...c })), entry], 'Adding an element');
+      else info('The box is too small for an element (at least 4 × 4 px)', true);
+      return;
+    }
     const d = state.drag;
     state.drag = null;
     if (!d || !d.moved) return;
@@ -278,6 +332,7 @@ export function setupGothic({ api, step, upload, refresh }) {
   });
 
   window.addEventListener('keydown', (ev) => {
+    if (ev.key === 'Escape' && state.adding) setAdding(false);
     if ((ev.key === 'Delete' || ev.key === 'Backspace') && state.selected !== null
       && !['INPUT', 'SELECT', 'TEXTAREA'].includes(document.activeElement.tagName)) {
       ev.preventDefault();
@@ -286,6 +341,7 @@ export function setupGothic({ api, step, upload, refresh }) {
   });
 
   $('gothic-delete').addEventListener('click', deleteSelected);
+  $('gothic-add').addEventListener('click', () => setAdding(!state.adding));
   $('gothic-undo').addEventListener('click', () => {
     const back = state.undo.pop();
     if (back) save(back, 'Undoing the last correction', false);
