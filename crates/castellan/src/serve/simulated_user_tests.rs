@@ -287,14 +287,14 @@ async fn a_simulated_user_corrects_every_development_plan() {
         "simulated user, {} plans: corrections per plan median {median}, worst {worst}; points wrong {wrong_before} → {wrong_after} of {points} ({refused} clicks refused); exact tower counts {exact_before} → {exact}; rooms and towers built right {right}/{checked}",
         outcomes.len()
     );
-    // Floors at the figures measured (docs/serve.md, "Corrections"): 46 → 29 points wrong of
-    // 169, exact tower counts 1 → 7 of 31 (the user knows where towers are only at annotated
-    // tower points), 36 of 38 annotated rooms and towers built as their kind.
+    // Floors at the figures measured (docs/serve.md, "Corrections by a simulated user"): 46 →
+    // 25 points wrong of 169, exact tower counts 1 → 8 of 31 (the user knows where towers are
+    // only at annotated tower points), 37 of 38 annotated rooms and towers built as their kind.
     assert!(
-        wrong_after <= 31,
+        wrong_after <= 26,
         "{wrong_after} of {points} points still wrong"
     );
     assert!(wrong_after < wrong_before, "{wrong_before} → {wrong_after}");
-    assert!(exact >= 7, "{exact} exact tower counts");
-    assert!(right * 100 >= checked * 94, "{right}/{checked} built right");
+    assert!(exact >= 8, "{exact} exact tower counts");
+    assert!(right * 100 >= checked * 97, "{right}/{checked} built right");
 }

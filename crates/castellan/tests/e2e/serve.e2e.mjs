@@ -206,7 +206,20 @@ try {
 
   // 3 correspondences: the demo's two, plus one clicked and removed again
   check(await page.locator('#corr-list li').count() === 2, 'the demo project has two correspondences');
-  await page.locator('#corr-photo').click({ position: { x: 40, y: 40 } });
+  // The façades found are outlined on the photo; a click outside them is refused at once.
+  const outlines = JSON.parse(await page.getAttribute('#corr-photo', 'data-outlines'));
+  figures.outlines = outlines.length;
+  check(outlines.length >= 1, 'the façades found are outlined on the correspondence photo');
+  const photoAt = async ([x, y]) => {
+    const el = page.locator('#corr-photo');
+    const b = await el.boundingBox();
+    const [w, h] = await el.evaluate((e) => [e.width, e.height]);
+    return { x: (x * b.width) / w, y: (y * b.height) / h };
+  };
+  await page.locator('#corr-photo').click({ position: await photoAt([2, 2]) });
+  check(/outside the façades found/.test(await page.textContent('#status')), 'a click outside the façades is refused');
+  const centre = [0, 1].map((k) => outlines[0].reduce((a, p) => a + p[k], 0) / 4);
+  await page.locator('#corr-photo').click({ position: await photoAt(centre) });
   await page.locator('#corr-plan').click({ position: { x: 60, y: 60 } });
   await page.click('#corr-add');
   check(await page.locator('#corr-list li').count() === 3, 'a clicked correspondence was added');

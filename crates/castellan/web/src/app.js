@@ -637,6 +637,7 @@ function drawCorrespondences() {
   if (photo) {
     redrawCorrPhoto = canvasImage($('corr-photo'), photo, (ctx) => {
       drawOutlines(ctx, state.outlines[state.facade] || []);
+      ctx.canvas.dataset.outlines = JSON.stringify(state.outlines[state.facade] || []);
       for (const c of state.corr) if (c.facade === state.facade) cross(ctx, c.facade_point, '#1565c0');
       if (state.pending && state.pending.facade === state.facade) cross(ctx, state.pending.facade_point, '#ff6d00');
     });
