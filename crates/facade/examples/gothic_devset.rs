@@ -25,13 +25,53 @@ use serde::Deserialize;
 /// IoU threshold of a match.
 pub const IOU_MIN: f64 = 0.5;
 
+/// What an annotated image is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ImageKind {
+    /// An engraving or a drawing.
+    Elevation,
+    Photo,
+}
+
+impl ImageKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            ImageKind::Elevation => "elevation",
+            ImageKind::Photo => "photo",
+        }
+    }
+}
+
+/// The head of an annotated element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HeadKind {
+    Pointed,
+    Round,
+    Segmental,
+    Rectangular,
+    Other,
+}
+
+/// An opening (window, door, arcade) or an arch that encloses other elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Role {
+    Opening,
+    Enclosing,
+}
+
 /// `data/gothic_devset/annotations.json`: one entry per image.
 #[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Annotated {
     /// Relative to `castle_drawings_pd/`.
     pub file: String,
-    /// `elevation` (engraving or drawing) or `photo`.
-    pub kind: String,
+    pub kind: ImageKind,
+    /// The castle and the view, from the drawings' manifest.
+    pub castle: String,
+    pub view: Option<String>,
     pub width: u32,
     pub height: u32,
     pub book: String,
@@ -43,11 +83,12 @@ pub struct Annotated {
 /// One annotated element: its box in image pixels, its head shape and role, the index of the
 /// enclosing element (in the same image's list) that contains it.
 #[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GtElement {
     #[serde(rename = "box")]
     pub bbox: [f64; 4],
-    pub kind: String,
-    pub role: String,
+    pub kind: HeadKind,
+    pub role: Role,
     pub parent: Option<usize>,
     #[serde(default)]
     pub difficult: bool,
@@ -318,12 +359,12 @@ fn main() {
             }
         }
         let s = score(&a.elements, &predicted(&est));
-        let k = usize::from(a.kind == "photo");
+        let k = usize::from(a.kind == ImageKind::Photo);
         totals[k].add(&s);
         secs_tot[k] += secs;
         count[k] += 1;
         let name = a.file.trim_start_matches("elevations/");
-        println!("{}", row(name, &a.kind, &s, secs));
+        println!("{}", row(name, a.kind.name(), &s, secs));
     }
     let mut all = Score::default();
     for (k, label) in ["**engravings**", "**photos**"].iter().enumerate() {

@@ -6,15 +6,16 @@
 #[allow(dead_code)]
 mod devset;
 
-use devset::{GtElement, Predicted, iou, match_greedy, score};
+use devset::{GtElement, HeadKind, ImageKind, Predicted, Role, iou, match_greedy, score};
 
-const KINDS: [&str; 5] = ["pointed", "round", "segmental", "rectangular", "other"];
+const OPENING: Role = Role::Opening;
+const ENCLOSING: Role = Role::Enclosing;
 
-fn gt(bbox: [f64; 4], role: &str, parent: Option<usize>, difficult: bool) -> GtElement {
+fn gt(bbox: [f64; 4], role: Role, parent: Option<usize>, difficult: bool) -> GtElement {
     GtElement {
         bbox,
-        kind: "round".into(),
-        role: role.into(),
+        kind: HeadKind::Round,
+        role,
         parent,
         difficult,
     }
@@ -28,8 +29,11 @@ fn pred(bbox: [f64; 4], parent: Option<usize>) -> Predicted {
 fn annotations_are_well_formed() {
     let path = devset::annotations_path();
     let ann = devset::read_annotations(&path).unwrap();
-    let elevations = ann.iter().filter(|a| a.kind == "elevation").count();
-    let photos = ann.iter().filter(|a| a.kind == "photo").count();
+    let elevations = ann
+        .iter()
+        .filter(|a| a.kind == ImageKind::Elevation)
+        .count();
+    let photos = ann.iter().filter(|a| a.kind == ImageKind::Photo).count();
     assert!(elevations >= 10, "{elevations} elevations, need ≥ 10");
     assert!(photos >= 10, "{photos} photos, need ≥ 10");
     assert_eq!(elevations + photos, ann.len(), "kind is elevation or photo");
@@ -42,9 +46,9 @@ fn annotations_are_well_formed() {
             "{f}: relative to castle_drawings_pd"
         );
         assert_eq!(
-            a.kind == "photo",
+            a.kind == ImageKind::Photo,
             f.contains("_photo_"),
-            "{f}: kind {}",
+            "{f}: kind {:?}",
             a.kind
         );
         assert!(
@@ -67,20 +71,10 @@ fn annotations_are_well_formed() {
                 "{f} #{i}: y {y0}..{y1} outside 0..{}",
                 a.height
             );
-            assert!(
-                KINDS.contains(&e.kind.as_str()),
-                "{f} #{i}: kind {}",
-                e.kind
-            );
-            assert!(
-                e.role == "opening" || e.role == "enclosing",
-                "{f} #{i}: role {}",
-                e.role
-            );
             if let Some(p) = e.parent {
                 assert!(p < a.elements.len() && p != i, "{f} #{i}: parent {p}");
                 let q = &a.elements[p];
-                assert_eq!(q.role, "enclosing", "{f} #{i}: parent {p} is not enclosing");
+                assert_eq!(q.role, Role::Enclosing, "{f} #{i}: parent {p} is not enclosing");
                 let b = q.bbox;
                 assert!(
                     b[0] <= x0 && b[1] <= y0 && x1 <= b[2] && y1 <= b[3],
@@ -164,10 +158,10 @@ fn recall_precision_known_answer() {
     // 3 counted boxes and 1 difficult one; 4 predictions: 2 on counted boxes, 1 on the
     // difficult box, 1 on nothing.
     let g = vec![
-        gt([0.0, 0.0, 10.0, 10.0], "opening", None, false),
-        gt([20.0, 0.0, 30.0, 10.0], "opening", None, false),
-        gt([40.0, 0.0, 50.0, 10.0], "opening", None, false),
-        gt([60.0, 0.0, 70.0, 10.0], "opening", None, true),
+        gt([0.0, 0.0, 10.0, 10.0], OPENING, None, false),
+        gt([20.0, 0.0, 30.0, 10.0], OPENING, None, false),
+        gt([40.0, 0.0, 50.0, 10.0], OPENING, None, false),
+        gt([60.0, 0.0, 70.0, 10.0], OPENING, None, true),
     ];
     let p = vec![
         pred([0.0, 0.0, 10.0, 10.0], None),
@@ -190,11 +184,11 @@ fn recall_precision_known_answer() {
 fn nesting_known_answer() {
     // Two bays: arch 0 with windows 1, 2; arch 3 with window 4.
     let g = vec![
-        gt([0.0, 0.0, 40.0, 40.0], "enclosing", None, false),
-        gt([5.0, 10.0, 15.0, 35.0], "opening", Some(0), false),
-        gt([25.0, 10.0, 35.0, 35.0], "opening", Some(0), false),
-        gt([50.0, 0.0, 90.0, 40.0], "enclosing", None, false),
-        gt([60.0, 10.0, 80.0, 35.0], "opening", Some(3), false),
+        gt([0.0, 0.0, 40.0, 40.0], ENCLOSING, None, false),
+        gt([5.0, 10.0, 15.0, 35.0], OPENING, Some(0), false),
+        gt([25.0, 10.0, 35.0, 35.0], OPENING, Some(0), false),
+        gt([50.0, 0.0, 90.0, 40.0], ENCLOSING, None, false),
+        gt([60.0, 10.0, 80.0, 35.0], OPENING, Some(3), false),
     ];
     // Predictions in another order: p0 = window 2 (parent p3, right), p1 = window 1 (no
     // parent, wrong), p2 = window 4 (parent p3 = arch 0's match, wrong: its arch was not
@@ -223,4 +217,18 @@ fn nesting_known_answer() {
     g2[4].difficult = true;
     let s = score(&g2, &p);
     assert_eq!((s.gt, s.matched, s.nested, s.nested_right), (4, 4, 2, 2));
+}
+
+#[test]
+fn an_unknown_kind_or_role_is_refused() {
+    let entry = |kind: &str, role: &str| {
+        format!(
+            r#"[{{"file": "elevations/x.png", "kind": "{kind}", "castle": "c", "view": null, "width": 10, "height": 10, "book": "b", "author": "a", "source": "s",
+                "elements": [{{"box": [0, 0, 5, 5], "kind": "pointed", "role": "{role}", "parent": null}}]}}]"#
+        )
+    };
+    let parse = |text: String| serde_json::from_str::<Vec<devset::Annotated>>(&text);
+    assert!(parse(entry("elevation", "opening")).is_ok());
+    assert!(parse(entry("sketch", "opening")).is_err());
+    assert!(parse(entry("photo", "window")).is_err());
 }
