@@ -20,7 +20,8 @@
 //!   program: a wall block, each element cut from it with the spandrel/opening construction of
 //!   `library/gothic_window.vsg` (same x0, y0, h, w, v), stones extruded as blocks.
 //! - [`draw`]: the overlay figure (mortar tinted, contours by nesting depth).
-//! - [`synth`]: synthetic façades with known arches for tests and benchmarks.
+//! - [`synth`], [`synth_lancet`]: synthetic façades with known arches for tests and
+//!   benchmarks; [`score`]: how an estimate compares with their answers (issue 23).
 //!
 //! ```
 //! use facade::gothic::{estimate, GothicParams, masonry, to_vsg, VsgOptions};
@@ -51,7 +52,9 @@ mod model;
 pub mod optimise;
 mod params;
 pub mod program;
+pub mod score;
 pub mod synth;
+pub mod synth_lancet;
 pub mod watershed;
 
 use image::RgbImage;
