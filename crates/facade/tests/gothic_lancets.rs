@@ -23,14 +23,7 @@ fn measure(params: &GothicParams) -> Score {
         let s = score(&f.truth(), &est, MIN_IOU);
         eprintln!(
             "seed {}: found {}/{}, parents {}/{}, groups {}/{}, extra {}",
-            spec.seed,
-            s.found,
-            s.elements,
-            s.right_parent,
-            s.nested,
-            s.complete,
-            s.groups,
-            s.extra
+            spec.seed, s.found, s.elements, s.right_parent, s.nested, s.complete, s.groups, s.extra
         );
         if let Some(dir) = &dump {
             f.image
@@ -65,5 +58,19 @@ fn measure(params: &GothicParams) -> Score {
 #[test]
 fn lancets_under_wall_coloured_arches_and_a_door() {
     let s = measure(&GothicParams::default());
-    assert!(s.recall() >= 0.0, "{s:?}");
+    assert_eq!(s.elements, 61);
+    assert!(s.recall() >= 0.9, "{s:?}");
+    assert!(s.parent_accuracy() >= 0.8, "{s:?}");
+    // The goal is every group whole; measured: 17 of 19 (docs/gothic.md).
+    assert!(s.complete + 2 >= s.groups, "{s:?}");
+    assert!(s.extra <= 2, "{s:?}");
+}
+
+/// The figures before issue 23 (its departures switched off), for docs/gothic.md:
+/// `cargo test -p facade --test gothic_lancets -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn before_issue_23() {
+    let s = measure(&GothicParams::without_issue_23());
+    assert!(s.recall() < 0.9, "{s:?}");
 }

@@ -12,8 +12,11 @@
 //!   significance test, duplicate suppression.
 //! - [`corrections`]: the user's deleted, moved and added elements (issue 22), applied between
 //!   detection and grouping ([`estimate_corrected`]).
-//! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions).
-//! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents.
+//! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions);
+//!   [`repeat`]: clusters split by their spacing, members proposed where it repeats;
+//!   [`sliver`]: thin ungrouped contours beside a group or a jamb dropped.
+//! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents;
+//!   [`enclose`]: the grid search for arches whose inside is the wall (issue 23).
 //! - [`masonry`] with [`watershed`]: element pixels removed, watershed on the rest, regions
 //!   merged by colour into stones and mortar.
 //! - [`program`]: [`to_vsg`](program::to_vsg), the estimate (+ stones, + a depth) as a VSG
@@ -43,6 +46,7 @@ pub mod detect;
 pub mod draw;
 pub mod dual;
 pub mod element;
+pub mod enclose;
 pub mod group;
 pub mod hatching_tone;
 pub mod hierarchy;
@@ -52,7 +56,9 @@ mod model;
 pub mod optimise;
 mod params;
 pub mod program;
+pub mod repeat;
 pub mod score;
+pub mod sliver;
 pub mod synth;
 pub mod synth_lancet;
 pub mod watershed;
@@ -200,16 +206,29 @@ fn organise_with_progress(
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
     for level in 0..params.max_levels {
+        if params.repetition {
+            add_copies(dt, &mut items, &mut group_of, &mut pinned, &deleted, params);
+        }
         let free: Vec<usize> = (0..items.len())
             .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
         let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
-        let clusters: Vec<Vec<usize>> =
-            group::cluster(&shapes, params.group_relative, params.group_absolute)
+        let rise = params.repetition.then_some(RISE_FACTOR);
+        let mut clusters: Vec<Vec<usize>> =
+            group::cluster_with(&shapes, params.group_relative, params.group_absolute, rise)
                 .into_iter()
                 .map(|c| c.iter().map(|&k| free[k]).collect())
-                .filter(|c| !rejected.contains(c))
                 .collect();
+        if params.repetition {
+            clusters = by_spacing(
+                dt,
+                clusters,
+                (&mut items, &mut group_of, &mut pinned),
+                &deleted,
+                params,
+            );
+        }
+        clusters.retain(|c| !rejected.contains(c));
         if clusters.is_empty() {
             break;
         }
@@ -284,7 +303,121 @@ fn organise_with_progress(
             *c = snap_round(dt, *c, params);
         }
     }
+    let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+    let keep = sliver::keep(&shapes, &group_of, &pinned, params);
+    if keep.iter().any(|k| !k) {
+        // Ids shift down past each dropped item: groups and corrections follow.
+        let mut new_id = vec![None; items.len()];
+        let mut next = 0;
+        for (i, &k) in keep.iter().enumerate() {
+            if k {
+                new_id[i] = Some(next);
+                next += 1;
+            }
+        }
+        items = kept(items, &keep);
+        group_of = kept(group_of, &keep);
+        for g in &mut groups {
+            for m in g.iter_mut() {
+                *m = new_id[*m].unwrap_or(*m);
+            }
+        }
+        for a in &mut applied {
+            a.element = a.element.and_then(|e| new_id[e]);
+        }
+    }
     Ok((finish(dt, items, group_of, groups, params), applied))
+}
+
+/// With `repetition`, a rise may differ by this many times the grouping tolerance (see
+/// [`group::cluster_with`]).
+pub const RISE_FACTOR: f64 = 1.5;
+
+/// Issue 23 (see [`repeat`]): each ungrouped element is tried at every shift along its sill
+/// line, and the significant copies join the items (none where the user deleted one).
+fn add_copies(
+    dt: &DistanceMap,
+    items: &mut Vec<Candidate>,
+    group_of: &mut Vec<Option<usize>>,
+    pinned: &mut Vec<bool>,
+    deleted: &[Theta],
+    params: &GothicParams,
+) {
+    let free: Vec<usize> = (0..items.len())
+        .filter(|&i| group_of[i].is_none() && !pinned[i])
+        .collect();
+    // Every ungrouped element, not only those without a similar one: two lancets found in two
+    // bays are similar, yet each bay's other lancets are still missing. A copy where an
+    // element of its size already stands is refused, so found members are not found twice.
+    let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+    // A sliver is not an element, so it is not repeated either (its copies would form a
+    // group and escape the sliver test).
+    let not_sliver = sliver::keep(&shapes, group_of, pinned, params);
+    for &i in free.iter().filter(|&&i| not_sliver[i]) {
+        // Only elements enclosing nothing: an arch is found over its own group, and a copy
+        // of one (a large contour) lands too easily on the long lines of a ruled drawing.
+        let encloses = shapes
+            .iter()
+            .any(|o| hierarchy::contains(&shapes[i], o, params.nesting_tolerance));
+        // Nor one pressed against the size bounds: CG stopped at the penalty there, not at
+        // an opening (a 16-px contour between two rulings of the synthetic engraving).
+        let t = &shapes[i];
+        let at_bound = t.w < 1.1 * params.min_width || t.h + t.v < 1.1 * params.min_height;
+        if encloses || at_bound {
+            continue;
+        }
+        let others: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+        for c in repeat::copies(dt, &items[i].theta, &others, params) {
+            if corrections::is_deleted(deleted, &c.theta, params) {
+                continue;
+            }
+            items.push(c);
+            group_of.push(None);
+            pinned.push(false);
+        }
+    }
+}
+
+/// Issue 23 (see [`repeat`]): clusters split where their spacing jumps, and members proposed
+/// in whole-spacing gaps and one spacing beyond each end (new items; none where the user
+/// deleted one).
+fn by_spacing(
+    dt: &DistanceMap,
+    clusters: Vec<Vec<usize>>,
+    (items, group_of, pinned): (&mut Vec<Candidate>, &mut Vec<Option<usize>>, &mut Vec<bool>),
+    deleted: &[Theta],
+    params: &GothicParams,
+) -> Vec<Vec<usize>> {
+    let tol = params.spacing_tolerance;
+    let mut out = Vec::new();
+    for c in clusters {
+        let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+        for mut piece in repeat::split_by_spacing(&shapes, &c, tol) {
+            let members: Vec<Theta> = piece.iter().map(|&i| items[i].theta).collect();
+            let all: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+            for found in repeat::fill_gaps(dt, &members, &all, tol, params) {
+                if corrections::is_deleted(deleted, &found.theta, params) {
+                    continue;
+                }
+                piece.push(items.len());
+                items.push(found);
+                group_of.push(None);
+                pinned.push(false);
+            }
+            piece.sort_by(|&a, &b| items[a].theta.x0.total_cmp(&items[b].theta.x0));
+            out.push(piece);
+        }
+    }
+    out
+}
+
+/// The entries of `v` whose `keep` is true.
+fn kept<T>(v: Vec<T>, keep: &[bool]) -> Vec<T> {
+    v.into_iter()
+        .zip(keep)
+        .filter(|(_, k)| **k)
+        .map(|(x, _)| x)
+        .collect()
 }
 
 /// Where an arc meets its jambs tangentially the springing line barely moves the contour, so

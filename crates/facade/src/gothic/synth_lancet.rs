@@ -31,8 +31,11 @@ pub struct LancetSpec {
     pub door: bool,
     /// Height (px) of the ground strip below the ground line.
     pub ground: u32,
-    /// Width (px) of the arch's moulding line.
+    /// Width (px) of the arch's moulding line, and its colour (a shadowed groove: dark, so
+    /// it stands out from the bricks as a moulding does; at (70, 60, 55), as dark as the
+    /// darkest bricks' shade, its edges fall partly below the edge threshold).
     pub moulding: f64,
+    pub moulding_colour: [u8; 3],
     /// Amplitude of the uniform pixel noise.
     pub noise: i32,
     pub seed: u64,
@@ -61,6 +64,7 @@ impl LancetSpec {
                 door,
                 ground: 14,
                 moulding: 3.0,
+                moulding_colour: [40, 34, 30],
                 noise: 8,
                 seed: 100 + i as u64,
             })
@@ -118,9 +122,14 @@ pub fn lancet_layout(spec: &LancetSpec) -> Vec<LancetTruth> {
         let g = 0.45 + rng.random_range(0.0..0.15);
         let rise = 0.85 + rng.random_range(0.0..0.2);
         let tall = 2.0 + rng.random_range(0.0..0.3);
-        let ov = (0.55 + rng.random_range(0.0..0.05)) * outer_w;
+        let ov_ratio = 0.55 + rng.random_range(0.0..0.05);
+        let ov = ov_ratio * outer_w;
         if !bay.nested {
-            let lw = outer_w / (c + g * (c + 1.0));
+            // Lancets are narrow: at most 36 px here, the arch shrinking around them.
+            let lw = (outer_w / (c + g * (c + 1.0))).min(36.0);
+            let outer_w = lw * (c + g * (c + 1.0));
+            let x_outer = margin + b as f64 * bay_w + (bay_w - outer_w) / 2.0;
+            let ov = ov_ratio * outer_w;
             let gap = g * lw;
             let (lh, lv) = (tall * lw, rise * lw);
             let ly0 = sill - gap;
@@ -307,7 +316,7 @@ pub fn lancet_facade(spec: &LancetSpec) -> LancetFacade {
                             continue;
                         }
                         if (xi - s.x).hypot(yi - s.y) <= r {
-                            image.put_pixel(xi as u32, yi as u32, Rgb([70, 60, 55]));
+                            image.put_pixel(xi as u32, yi as u32, Rgb(spec.moulding_colour));
                         }
                     }
                 }
@@ -336,8 +345,9 @@ mod tests {
                 }
                 for (j, o) in els.iter().enumerate().skip(i + 1) {
                     if o.element.parent == e.element.parent {
-                        let [a0, _, a1, _] = o.element.theta.bbox();
-                        assert!(a0 >= x1 || a1 <= x0 || o.element.theta.y0 < y0, "{i} {j}");
+                        let [a0, b0, a1, b1] = o.element.theta.bbox();
+                        let apart = a0 >= x1 || a1 <= x0 || b0 >= y1 || b1 <= y0;
+                        assert!(apart, "{i} {j}");
                     }
                 }
             }
