@@ -15,9 +15,14 @@ use facade::gothic::{GothicParams, estimate};
 const MIN_IOU: f64 = 0.7;
 
 fn measure(params: &GothicParams) -> Score {
+    measure_set(params, &LancetSpec::evaluation_set())
+}
+
+fn measure_set(params: &GothicParams, set: &[LancetSpec]) -> Score {
     let dump = std::env::var_os("GOTHIC_LANCET_OVERLAYS").map(std::path::PathBuf::from);
     let mut total = Score::default();
-    for spec in LancetSpec::evaluation_set() {
+    for spec in set {
+        let spec = spec.clone();
         let f = lancet_facade(&spec);
         let est = estimate(&f.image, params).unwrap();
         let s = score(&f.truth(), &est, MIN_IOU);
@@ -61,9 +66,40 @@ fn lancets_under_wall_coloured_arches_and_a_door() {
     assert_eq!(s.elements, 61);
     assert!(s.recall() >= 0.9, "{s:?}");
     assert!(s.parent_accuracy() >= 0.8, "{s:?}");
-    // The goal is every group whole; measured: 17 of 19 (docs/gothic.md).
-    assert!(s.complete + 2 >= s.groups, "{s:?}");
-    assert!(s.extra <= 2, "{s:?}");
+    assert_eq!(s.complete, s.groups, "{s:?}");
+    assert!(s.extra <= 1, "{s:?}");
+}
+
+/// The same layouts with seeds the thresholds were not set on (measured: 57 of 61 elements,
+/// 36 of 43 parents, 16 of 19 groups whole; docs/gothic.md says which miss).
+#[test]
+fn held_out_seeds() {
+    let s = measure_set(&GothicParams::default(), &LancetSpec::set(200));
+    assert!(s.recall() >= 0.9, "{s:?}");
+    assert!(s.parent_accuracy() >= 0.8, "{s:?}");
+    assert!(s.complete + 3 >= s.groups, "{s:?}");
+}
+
+/// A harder moulding: (70, 60, 55), as dark as the darkest bricks' shade, so parts of its
+/// edges fall below the edge threshold. Figures only:
+/// `cargo test -p facade --test gothic_lancets -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn faint_moulding() {
+    let set: Vec<LancetSpec> = LancetSpec::evaluation_set()
+        .into_iter()
+        .map(|s| LancetSpec {
+            moulding_colour: [70, 60, 55],
+            ..s
+        })
+        .collect();
+    for (name, params) in [
+        ("before", GothicParams::without_issue_23()),
+        ("after", GothicParams::default()),
+    ] {
+        eprintln!("faint moulding, {name}:");
+        measure_set(&params, &set);
+    }
 }
 
 /// The figures before issue 23 (its departures switched off), for docs/gothic.md:

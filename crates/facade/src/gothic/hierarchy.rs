@@ -57,7 +57,7 @@ pub fn proposals(members: &[Theta]) -> Vec<Theta> {
 const KEEP_AFTER_FIRST_ROUND: usize = 6;
 /// How much better (px of mean distance) the grid's enclosing arch must fit to replace the
 /// proposals' (see [`enclosing`]).
-const GRID_MARGIN: f64 = 0.1;
+const GRID_MARGIN: f64 = 0.05;
 /// CG iterations of that first round.
 const FIRST_ROUND: u64 = 8;
 

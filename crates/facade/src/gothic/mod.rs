@@ -389,14 +389,31 @@ fn by_spacing(
     params: &GothicParams,
 ) -> Vec<Vec<usize>> {
     let tol = params.spacing_tolerance;
+    let in_cluster: std::collections::BTreeSet<usize> =
+        clusters.iter().flatten().copied().collect();
+    let loose: Vec<usize> = (0..items.len())
+        .filter(|&i| group_of[i].is_none() && !pinned[i] && !in_cluster.contains(&i))
+        .collect();
+    let mut taken: Vec<usize> = Vec::new();
     let mut out = Vec::new();
     for c in clusters {
         let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
         for mut piece in repeat::split_by_spacing(&shapes, &c, tol) {
             let members: Vec<Theta> = piece.iter().map(|&i| items[i].theta).collect();
             let all: Vec<Theta> = items.iter().map(|c| c.theta).collect();
-            for found in repeat::fill_gaps(dt, &members, &all, tol, params) {
+            let free: Vec<usize> = loose
+                .iter()
+                .copied()
+                .filter(|j| !taken.contains(j))
+                .collect();
+            for (found, replaced) in repeat::fill_gaps(dt, &members, &all, &free, tol, params) {
                 if corrections::is_deleted(deleted, &found.theta, params) {
+                    continue;
+                }
+                if let Some(j) = replaced {
+                    items[j] = found;
+                    taken.push(j);
+                    piece.push(j);
                     continue;
                 }
                 piece.push(items.len());

@@ -99,14 +99,18 @@ fn alike(a: &Theta, b: &Theta) -> bool {
 
 /// New members for a group (sorted left to right, one shared shape): in every gap that is
 /// k ≥ 2 spacings (within `tol`) and one spacing beyond either end. `others` are every element
-/// already found (a new member may not overlap one of its size).
+/// already found: a new member may not overlap one of its size, except one of the `loose`
+/// ones (found alone, in no cluster), which it replaces — the index is returned with it. A
+/// lancet whose own fit put its sill on the bed joint below (10 px off, so in no group) is
+/// the group's shape at the group's spacing.
 pub fn fill_gaps(
     dt: &DistanceMap,
     members: &[Theta],
     others: &[Theta],
+    loose: &[usize],
     tol: f64,
     params: &GothicParams,
-) -> Vec<Candidate> {
+) -> Vec<(Candidate, Option<usize>)> {
     if members.len() < 2 {
         return Vec::new();
     }
@@ -142,11 +146,19 @@ pub fn fill_gaps(
         .iter()
         .map(|m| fit(dt, m, params.step).mean_distance)
         .fold(0.0, f64::max);
-    let mut out: Vec<Candidate> = Vec::new();
+    let mut out: Vec<(Candidate, Option<usize>)> = Vec::new();
     for t in tries {
-        let mut blocked: Vec<Theta> = others.to_vec();
-        blocked.extend(out.iter().map(|c| c.theta));
-        out.extend(try_at(dt, t, reach, &blocked, model, params));
+        let replaced = loose
+            .iter()
+            .copied()
+            .filter(|&j| out.iter().all(|(_, r)| *r != Some(j)))
+            .find(|&j| alike(&others[j], &t) && iou(&others[j], &t) >= 0.3);
+        let mut blocked: Vec<Theta> = (0..others.len())
+            .filter(|&j| Some(j) != replaced)
+            .map(|j| others[j])
+            .collect();
+        blocked.extend(out.iter().map(|(c, _)| c.theta));
+        out.extend(try_at(dt, t, reach, &blocked, model, params).map(|c| (c, replaced)));
     }
     out
 }
