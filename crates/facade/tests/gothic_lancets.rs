@@ -109,4 +109,6 @@ fn faint_moulding() {
 fn before_issue_23() {
     let s = measure(&GothicParams::without_issue_23());
     assert!(s.recall() < 0.9, "{s:?}");
+    eprintln!("held-out seeds:");
+    measure_set(&GothicParams::without_issue_23(), &LancetSpec::set(200));
 }

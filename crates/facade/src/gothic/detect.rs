@@ -188,6 +188,7 @@ pub fn detect_with(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Vec<Candidate> {
     let seeds = seeds(dt, params.min_seed_radius, params.max_seeds);
+    // Departure from §4.2: rectangle and disc-wide starts besides the walked box (issue 23).
     let starts = starts_with(dt, &seeds, params.more_starts);
     detect_from_starts_with(dt, &starts, params, progress)
 }

@@ -141,6 +141,7 @@ pub fn search(dt: &DistanceMap, members: &[Theta], params: &GothicParams) -> Opt
         .map(|i| spring - i as f64 * step)
         .collect();
     let rises: Vec<f64> = (0..15).map(|i| 0.3 + 0.05 * i as f64).collect();
+    // Departure from §4.2: a grid of arches scored by the clipped ∮D ds, not CG from proposals.
     let sums = Sums::of(dt);
     // For every half-width: each (springing, rise) arch's sum, then every sill in O(1).
     let mut best: Vec<(f64, Theta)> = margins

@@ -105,7 +105,7 @@ pub fn enclosing(dt: &DistanceMap, members: &[Theta], params: &GothicParams) -> 
             ok.then_some(Candidate { theta, fit: f })
         })
         .collect();
-    // Departure from §4.2 (issue 23): an arch whose inside is the wall is marked by its
+    // Departure from §4.2 (issue 23, figure 4.4): an arch whose inside is the wall is marked by its
     // moulding line only, and no proposal's CG reaches it through the bricks' joints; the
     // grid search of `enclose` is tried too, and it replaces the best proposal within
     // `enclose::reach` of the group when it fits better by more than `GRID_MARGIN`. (Where

@@ -206,6 +206,7 @@ fn organise_with_progress(
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
     for level in 0..params.max_levels {
+        // Departure from §4.2: repeated elements proposed by copying (repeat.rs, issue 23).
         if params.repetition {
             add_copies(dt, &mut items, &mut group_of, &mut pinned, &deleted, params);
         }
@@ -213,6 +214,7 @@ fn organise_with_progress(
             .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
         let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
+        // Departure from §4.2: groups by box and rise, split by spacing (issue 23).
         let rise = params.repetition.then_some(RISE_FACTOR);
         let mut clusters: Vec<Vec<usize>> =
             group::cluster_with(&shapes, params.group_relative, params.group_absolute, rise)
@@ -304,6 +306,7 @@ fn organise_with_progress(
         }
     }
     let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+    // Departure from §4.2: slivers beside a group or a jamb are not elements (issue 23).
     let keep = sliver::keep(&shapes, &group_of, &pinned, params);
     if keep.iter().any(|k| !k) {
         // Ids shift down past each dropped item: groups and corrections follow.

@@ -172,6 +172,8 @@ fn element_rules(out: &mut String, e: &Element, children: &[&Element]) {
     };
     // The slab of a zone of height `zh` whose centre is at model height `cy`, at depth `dz`
     // in the rule's frame, minus every child's box.
+    // Departure from §4.2 / figure 4.4(c), whose blocks are the elements' boxes: the parent's
+    // slab is its zone's box less its children's boxes (issue 23).
     let slab = |zh: &str, cy: &str, dz: &str| -> String {
         let holes: String = children
             .iter()
