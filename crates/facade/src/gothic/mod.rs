@@ -205,6 +205,8 @@ fn organise_with_progress(
     let mut group_of: Vec<Option<usize>> = vec![None; items.len()];
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
+    // Each group's members and the item enclosing it, for twin arches (repeat::twin_arches).
+    let mut arches: Vec<(Vec<Theta>, usize)> = Vec::new();
     for level in 0..params.max_levels {
         // Departure from §4.2: repeated elements proposed by copying (repeat.rs, issue 23).
         if params.repetition {
@@ -265,25 +267,46 @@ fn organise_with_progress(
             groups.push(members);
             // An element found from the seeds may already enclose the group; the proposals
             // of §4.2 start from the group itself and replace it when they fit better.
-            let Some(enc) = hierarchy::enclosing(dt, &thetas, params) else {
+            let Some(mut enc) = hierarchy::enclosing(dt, &thetas, params) else {
                 continue;
             };
             if corrections::is_deleted(&deleted, &enc.theta, params) {
                 continue;
             }
+            // Departure from §4.2: twin groups get twin arches (issue 23).
+            if params.repetition {
+                let twin = arches.iter().find(|(m, _)| {
+                    repeat::twins(m, &thetas, params.spacing_tolerance, RISE_FACTOR, params)
+                });
+                if let Some((m, a)) = twin.filter(|(_, a)| !pinned[*a]) {
+                    let pair = repeat::twin_arches(
+                        dt,
+                        (m.as_slice(), &items[*a]),
+                        (&thetas, &enc),
+                        params,
+                    );
+                    if let Some((a2, b2)) = pair {
+                        items[*a] = a2;
+                        enc = b2;
+                    }
+                }
+            }
             let same = (0..items.len())
                 .find(|&i| detect::iou(&items[i].theta, &enc.theta) >= params.duplicate_iou);
-            match same {
+            let at = match same {
                 Some(i) if !pinned[i] && items[i].fit.mean_distance > enc.fit.mean_distance => {
-                    items[i] = enc
+                    items[i] = enc;
+                    i
                 }
-                Some(_) => {}
+                Some(i) => i,
                 None => {
                     items.push(enc);
                     group_of.push(None);
                     pinned.push(false);
+                    items.len() - 1
                 }
-            }
+            };
+            arches.push((thetas, at));
         }
     }
     if !deferred.is_empty() {

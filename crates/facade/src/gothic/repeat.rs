@@ -212,6 +212,68 @@ pub fn copies(
     out
 }
 
+/// Whether two groups are twins: as many members, of one shape (by
+/// [`similar_box`](super::group::similar_box) with the grouping tolerance and `rise_factor`),
+/// at one spacing (within `tol`).
+pub fn twins(a: &[Theta], b: &[Theta], tol: f64, rise_factor: f64, params: &GothicParams) -> bool {
+    let pitch = |m: &[Theta]| {
+        if m.len() < 2 {
+            0.0
+        } else {
+            (m[m.len() - 1].x0 - m[0].x0) / (m.len() - 1) as f64
+        }
+    };
+    let (pa, pb) = (pitch(a), pitch(b));
+    a.len() == b.len()
+        && super::group::similar_box(
+            &a[0],
+            &b[0],
+            params.group_relative,
+            params.group_absolute,
+            rise_factor,
+        )
+        && (pa - pb).abs() <= tol * pa.max(pb)
+}
+
+/// Departure from §4.2 (issue 23): twin groups (the two pairs of lancets of a tracery window)
+/// stand under twin arches — self-similarity one level up — but each arch found on its own
+/// may settle on a different line (one on the outer arch's sill), and then the two do not
+/// group and the arch over both is never proposed. Each arch is tried translated onto the
+/// other group (with ±2 px of search); the consistent pair of the lower summed mean distance
+/// is returned, or None when neither translation is significant, fits within 1.5 × (or
+/// 0.2 px of) its original and still encloses its group.
+pub fn twin_arches(
+    dt: &DistanceMap,
+    (a_members, a): (&[Theta], &Candidate),
+    (b_members, b): (&[Theta], &Candidate),
+    params: &GothicParams,
+) -> Option<(Candidate, Candidate)> {
+    let (dx, dy) = (
+        b_members[0].x0 - a_members[0].x0,
+        b_members[0].y0 - a_members[0].y0,
+    );
+    let moved = |c: &Candidate, sign: f64, members: &[Theta]| {
+        let t = Theta {
+            x0: c.theta.x0 + sign * dx,
+            y0: c.theta.y0 + sign * dy,
+            ..c.theta
+        };
+        try_at(dt, t, 2, &[], c.fit.mean_distance, params).filter(|m| {
+            super::enclose::within_reach(&m.theta, members)
+                && members
+                    .iter()
+                    .all(|x| super::hierarchy::contains(&m.theta, x, params.nesting_tolerance))
+        })
+    };
+    let keep_a = moved(a, 1.0, b_members).map(|b2| (*a, b2));
+    let keep_b = moved(b, -1.0, a_members).map(|a2| (a2, *b));
+    let cost = |p: &(Candidate, Candidate)| p.0.fit.mean_distance + p.1.fit.mean_distance;
+    match (keep_a, keep_b) {
+        (Some(x), Some(y)) => Some(if cost(&x) <= cost(&y) { x } else { y }),
+        (x, y) => x.or(y),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -224,6 +286,26 @@ mod tests {
             w: 20.0,
             v: 16.0,
         }
+    }
+
+    #[test]
+    fn twin_groups_have_as_many_members_of_one_shape_at_one_spacing() {
+        let p = GothicParams::default();
+        let (a, b) = ([at(0.0), at(30.0)], [at(80.0), at(111.0)]);
+        assert!(twins(&a, &b, 0.25, 1.5, &p));
+        assert!(!twins(&a, &[at(80.0), at(111.0), at(142.0)], 0.25, 1.5, &p));
+        assert!(!twins(&a, &[at(80.0), at(130.0)], 0.25, 1.5, &p));
+        let wide = Theta {
+            w: 30.0,
+            ..at(80.0)
+        };
+        assert!(!twins(
+            &a,
+            &[wide, Theta { x0: 111.0, ..wide }],
+            0.25,
+            1.5,
+            &p
+        ));
     }
 
     #[test]
