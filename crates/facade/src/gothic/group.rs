@@ -15,6 +15,34 @@ pub fn similar(a: &Theta, b: &Theta, rel: f64, abs: f64) -> bool {
 /// windows on two storeys or in two bays far apart form separate groups that each get their
 /// own enclosing arch. Returns clusters of two or more indices, each sorted left to right.
 pub fn cluster(shapes: &[Theta], rel: f64, abs: f64) -> Vec<Vec<usize>> {
+    cluster_with(shapes, rel, abs, None)
+}
+
+/// Whether two shapes are the same by their box and rise: w and the total height h + v within
+/// `rel` of the larger size plus `abs` px, and v within `rise_factor` times that.
+pub fn similar_box(a: &Theta, b: &Theta, rel: f64, abs: f64, rise_factor: f64) -> bool {
+    let size = a.w.max(b.w).max(a.h + a.v).max(b.h + b.v);
+    let tol = rel * size + abs;
+    (a.w - b.w).abs() <= tol
+        && (a.h + a.v - b.h - b.v).abs() <= tol
+        && (a.v - b.v).abs() <= rise_factor * tol
+}
+
+/// [`cluster`]; with `Some(rise_factor)`, shapes compared by [`similar_box`] instead of
+/// [`similar`]. Departure from §4.2 (issue 23): where the head meets the jambs almost
+/// tangentially the fit moves v and h against each other at a fixed apex (a lancet found with
+/// v = 30 beside its twins' 21, the same box), so the box is held to the tolerance and the
+/// rise to `rise_factor` times it.
+pub fn cluster_with(
+    shapes: &[Theta],
+    rel: f64,
+    abs: f64,
+    rise_factor: Option<f64>,
+) -> Vec<Vec<usize>> {
+    let same = |a: &Theta, b: &Theta| match rise_factor {
+        Some(f) => similar_box(a, b, rel, abs, f),
+        None => similar(a, b, rel, abs),
+    };
     let n = shapes.len();
     let mut root: Vec<usize> = (0..n).collect();
     fn find(root: &mut [usize], mut i: usize) -> usize {
@@ -30,7 +58,7 @@ pub fn cluster(shapes: &[Theta], rel: f64, abs: f64) -> Vec<Vec<usize>> {
             let size = a.w.max(b.w).max(a.h + a.v).max(b.h + b.v);
             let same_row = (a.y0 - b.y0).abs() <= rel * size + abs;
             let apart = a.bbox()[2] <= b.bbox()[0] + abs || b.bbox()[2] <= a.bbox()[0] + abs;
-            if similar(a, b, rel, abs) && same_row && apart {
+            if same(a, b) && same_row && apart {
                 let (ri, rj) = (find(&mut root, i), find(&mut root, j));
                 root[ri] = rj;
             }

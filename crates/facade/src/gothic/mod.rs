@@ -12,15 +12,19 @@
 //!   significance test, duplicate suppression.
 //! - [`corrections`]: the user's deleted, moved and added elements (issue 22), applied between
 //!   detection and grouping ([`estimate_corrected`]).
-//! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions).
-//! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents.
+//! - [`group`]: clusters by (h, w, v) and joint re-estimation (shared shape, own positions);
+//!   [`repeat`]: clusters split by their spacing, members proposed where it repeats;
+//!   [`sliver`]: thin ungrouped contours beside a group or a jamb dropped.
+//! - [`hierarchy`]: enclosing-arch proposals over groups, iterated (figure 4.4), and parents;
+//!   [`enclose`]: the grid search for arches whose inside is the wall (issue 23).
 //! - [`masonry`] with [`watershed`]: element pixels removed, watershed on the rest, regions
 //!   merged by colour into stones and mortar.
 //! - [`program`]: [`to_vsg`](program::to_vsg), the estimate (+ stones, + a depth) as a VSG
 //!   program: a wall block, each element cut from it with the spandrel/opening construction of
 //!   `library/gothic_window.vsg` (same x0, y0, h, w, v), stones extruded as blocks.
 //! - [`draw`]: the overlay figure (mortar tinted, contours by nesting depth).
-//! - [`synth`]: synthetic façades with known arches for tests and benchmarks.
+//! - [`synth`], [`synth_lancet`]: synthetic façades with known arches for tests and
+//!   benchmarks; [`score`]: how an estimate compares with their answers (issue 23).
 //!
 //! ```
 //! use facade::gothic::{estimate, GothicParams, masonry, to_vsg, VsgOptions};
@@ -42,6 +46,7 @@ pub mod detect;
 pub mod draw;
 pub mod dual;
 pub mod element;
+pub mod enclose;
 pub mod group;
 pub mod hatching_tone;
 pub mod hierarchy;
@@ -51,7 +56,11 @@ mod model;
 pub mod optimise;
 mod params;
 pub mod program;
+pub mod repeat;
+pub mod score;
+pub mod sliver;
 pub mod synth;
+pub mod synth_lancet;
 pub mod watershed;
 
 use image::RgbImage;
@@ -196,17 +205,34 @@ fn organise_with_progress(
     let mut group_of: Vec<Option<usize>> = vec![None; items.len()];
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut rejected: Vec<Vec<usize>> = Vec::new();
+    // Each group's members and the item enclosing it, for twin arches (repeat::twin_arches).
+    let mut arches: Vec<(Vec<Theta>, usize)> = Vec::new();
     for level in 0..params.max_levels {
+        // Departure from §4.2: repeated elements proposed by copying (repeat.rs, issue 23).
+        if params.repetition {
+            add_copies(dt, &mut items, &mut group_of, &mut pinned, &deleted, params);
+        }
         let free: Vec<usize> = (0..items.len())
             .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
         let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
-        let clusters: Vec<Vec<usize>> =
-            group::cluster(&shapes, params.group_relative, params.group_absolute)
+        // Departure from §4.2: groups by box and rise, split by spacing (issue 23).
+        let rise = params.repetition.then_some(RISE_FACTOR);
+        let mut clusters: Vec<Vec<usize>> =
+            group::cluster_with(&shapes, params.group_relative, params.group_absolute, rise)
                 .into_iter()
                 .map(|c| c.iter().map(|&k| free[k]).collect())
-                .filter(|c| !rejected.contains(c))
                 .collect();
+        if params.repetition {
+            clusters = by_spacing(
+                dt,
+                clusters,
+                (&mut items, &mut group_of, &mut pinned),
+                &deleted,
+                params,
+            );
+        }
+        clusters.retain(|c| !rejected.contains(c));
         if clusters.is_empty() {
             break;
         }
@@ -241,25 +267,46 @@ fn organise_with_progress(
             groups.push(members);
             // An element found from the seeds may already enclose the group; the proposals
             // of §4.2 start from the group itself and replace it when they fit better.
-            let Some(enc) = hierarchy::enclosing(dt, &thetas, params) else {
+            let Some(mut enc) = hierarchy::enclosing(dt, &thetas, params) else {
                 continue;
             };
             if corrections::is_deleted(&deleted, &enc.theta, params) {
                 continue;
             }
+            // Departure from §4.2: twin groups get twin arches (issue 23).
+            if params.repetition {
+                let twin = arches.iter().find(|(m, _)| {
+                    repeat::twins(m, &thetas, params.spacing_tolerance, RISE_FACTOR, params)
+                });
+                if let Some((m, a)) = twin.filter(|(_, a)| !pinned[*a]) {
+                    let pair = repeat::twin_arches(
+                        dt,
+                        (m.as_slice(), &items[*a]),
+                        (&thetas, &enc),
+                        params,
+                    );
+                    if let Some((a2, b2)) = pair {
+                        items[*a] = a2;
+                        enc = b2;
+                    }
+                }
+            }
             let same = (0..items.len())
                 .find(|&i| detect::iou(&items[i].theta, &enc.theta) >= params.duplicate_iou);
-            match same {
+            let at = match same {
                 Some(i) if !pinned[i] && items[i].fit.mean_distance > enc.fit.mean_distance => {
-                    items[i] = enc
+                    items[i] = enc;
+                    i
                 }
-                Some(_) => {}
+                Some(i) => i,
                 None => {
                     items.push(enc);
                     group_of.push(None);
                     pinned.push(false);
+                    items.len() - 1
                 }
-            }
+            };
+            arches.push((thetas, at));
         }
     }
     if !deferred.is_empty() {
@@ -281,7 +328,139 @@ fn organise_with_progress(
             *c = snap_round(dt, *c, params);
         }
     }
+    let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+    // Departure from §4.2: slivers beside a group or a jamb are not elements (issue 23).
+    let keep = sliver::keep(&shapes, &group_of, &pinned, params);
+    if keep.iter().any(|k| !k) {
+        // Ids shift down past each dropped item: groups and corrections follow.
+        let mut new_id = vec![None; items.len()];
+        let mut next = 0;
+        for (i, &k) in keep.iter().enumerate() {
+            if k {
+                new_id[i] = Some(next);
+                next += 1;
+            }
+        }
+        items = kept(items, &keep);
+        group_of = kept(group_of, &keep);
+        for g in &mut groups {
+            for m in g.iter_mut() {
+                *m = new_id[*m].unwrap_or(*m);
+            }
+        }
+        for a in &mut applied {
+            a.element = a.element.and_then(|e| new_id[e]);
+        }
+    }
     Ok((finish(dt, items, group_of, groups, params), applied))
+}
+
+/// With `repetition`, a rise may differ by this many times the grouping tolerance (see
+/// [`group::cluster_with`]).
+pub const RISE_FACTOR: f64 = 1.5;
+
+/// Issue 23 (see [`repeat`]): each ungrouped element is tried at every shift along its sill
+/// line, and the significant copies join the items (none where the user deleted one).
+fn add_copies(
+    dt: &DistanceMap,
+    items: &mut Vec<Candidate>,
+    group_of: &mut Vec<Option<usize>>,
+    pinned: &mut Vec<bool>,
+    deleted: &[Theta],
+    params: &GothicParams,
+) {
+    let free: Vec<usize> = (0..items.len())
+        .filter(|&i| group_of[i].is_none() && !pinned[i])
+        .collect();
+    // Every ungrouped element, not only those without a similar one: two lancets found in two
+    // bays are similar, yet each bay's other lancets are still missing. A copy where an
+    // element of its size already stands is refused, so found members are not found twice.
+    let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+    // A sliver is not an element, so it is not repeated either (its copies would form a
+    // group and escape the sliver test).
+    let not_sliver = sliver::keep(&shapes, group_of, pinned, params);
+    for &i in free.iter().filter(|&&i| not_sliver[i]) {
+        // Only elements enclosing nothing: an arch is found over its own group, and a copy
+        // of one (a large contour) lands too easily on the long lines of a ruled drawing.
+        let encloses = shapes
+            .iter()
+            .any(|o| hierarchy::contains(&shapes[i], o, params.nesting_tolerance));
+        // Nor one pressed against the size bounds: CG stopped at the penalty there, not at
+        // an opening (a 16-px contour between two rulings of the synthetic engraving).
+        let t = &shapes[i];
+        let at_bound = t.w < 1.1 * params.min_width || t.h + t.v < 1.1 * params.min_height;
+        if encloses || at_bound {
+            continue;
+        }
+        let others: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+        for c in repeat::copies(dt, &items[i].theta, &others, params) {
+            if corrections::is_deleted(deleted, &c.theta, params) {
+                continue;
+            }
+            items.push(c);
+            group_of.push(None);
+            pinned.push(false);
+        }
+    }
+}
+
+/// Issue 23 (see [`repeat`]): clusters split where their spacing jumps, and members proposed
+/// in whole-spacing gaps and one spacing beyond each end (new items; none where the user
+/// deleted one).
+fn by_spacing(
+    dt: &DistanceMap,
+    clusters: Vec<Vec<usize>>,
+    (items, group_of, pinned): (&mut Vec<Candidate>, &mut Vec<Option<usize>>, &mut Vec<bool>),
+    deleted: &[Theta],
+    params: &GothicParams,
+) -> Vec<Vec<usize>> {
+    let tol = params.spacing_tolerance;
+    let in_cluster: std::collections::BTreeSet<usize> =
+        clusters.iter().flatten().copied().collect();
+    let loose: Vec<usize> = (0..items.len())
+        .filter(|&i| group_of[i].is_none() && !pinned[i] && !in_cluster.contains(&i))
+        .collect();
+    let mut taken: Vec<usize> = Vec::new();
+    let mut out = Vec::new();
+    for c in clusters {
+        let shapes: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+        for mut piece in repeat::split_by_spacing(&shapes, &c, tol) {
+            let members: Vec<Theta> = piece.iter().map(|&i| items[i].theta).collect();
+            let all: Vec<Theta> = items.iter().map(|c| c.theta).collect();
+            let free: Vec<usize> = loose
+                .iter()
+                .copied()
+                .filter(|j| !taken.contains(j))
+                .collect();
+            for (found, replaced) in repeat::fill_gaps(dt, &members, &all, &free, tol, params) {
+                if corrections::is_deleted(deleted, &found.theta, params) {
+                    continue;
+                }
+                if let Some(j) = replaced {
+                    items[j] = found;
+                    taken.push(j);
+                    piece.push(j);
+                    continue;
+                }
+                piece.push(items.len());
+                items.push(found);
+                group_of.push(None);
+                pinned.push(false);
+            }
+            piece.sort_by(|&a, &b| items[a].theta.x0.total_cmp(&items[b].theta.x0));
+            out.push(piece);
+        }
+    }
+    out
+}
+
+/// The entries of `v` whose `keep` is true.
+fn kept<T>(v: Vec<T>, keep: &[bool]) -> Vec<T> {
+    v.into_iter()
+        .zip(keep)
+        .filter(|(_, k)| **k)
+        .map(|(x, _)| x)
+        .collect()
 }
 
 /// Where an arc meets its jambs tangentially the springing line barely moves the contour, so

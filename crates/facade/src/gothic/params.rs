@@ -8,6 +8,7 @@ use super::optimise::ShapeBounds;
 
 /// Every threshold of the Gothic pipeline. The dissertation fixes none of them (§4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct GothicParams {
     /// Prewitt magnitude threshold, as a share of the 99th-percentile magnitude.
     pub edge_threshold: f64,
@@ -40,6 +41,27 @@ pub struct GothicParams {
     /// Hatching suppression before the edges (engravings; [`hatching_tone`]), off for
     /// photographs.
     pub hatching: Option<hatching_tone::HatchParams>,
+    /// Issue 23, departure from §4.2: enclosing arches are also searched over a grid of
+    /// shapes centred on their group ([`enclose`](super::enclose)), for arches whose inside
+    /// is the wall. `false`: §4.2's proposals and CG only.
+    pub enclosing_grid: bool,
+    /// Issue 23, departure from §4.2: rectangles and seed-disc-wide boxes among the first
+    /// shapes ([`detect::starts_with`](super::detect::starts_with)). `false`: the round- and
+    /// pointed-headed walked boxes only.
+    pub more_starts: bool,
+    /// Issue 23, departure from §4.2: rows of identical elements split where the spacing
+    /// jumps, and members proposed where it repeats ([`repeat`](super::repeat)). `false`:
+    /// groups by (h, w, v) and sill line only.
+    pub repetition: bool,
+    /// Relative tolerance on the spacing: a spacing more than (1 + this) × its neighbour's is
+    /// a jump; a gap within this share of k spacings holds k − 1 missing members.
+    pub spacing_tolerance: f64,
+    /// Issue 23, departure from §4.2 ([`sliver`](super::sliver)): an ungrouped element
+    /// narrower than this share of the widest group in the same parent is dropped, ...
+    pub sliver_of_group: f64,
+    /// ... and one narrower than this share of its parent's width. 0 and 0: every significant
+    /// element is kept, as §4.2 does.
+    pub sliver_of_parent: f64,
 }
 
 impl Default for GothicParams {
@@ -60,11 +82,31 @@ impl Default for GothicParams {
             max_levels: 3,
             nesting_tolerance: 3.0,
             hatching: None,
+            enclosing_grid: true,
+            more_starts: true,
+            repetition: true,
+            spacing_tolerance: 0.25,
+            sliver_of_group: 0.5,
+            sliver_of_parent: 0.15,
         }
     }
 }
 
 impl GothicParams {
+    /// The defaults without issue 23's departures (the enclosing-arch grid, the rectangle and
+    /// disc starts, repetition, slivers): §4.2's grouping and enclosing proposals as they were
+    /// before, for comparison.
+    pub fn without_issue_23() -> GothicParams {
+        GothicParams {
+            enclosing_grid: false,
+            more_starts: false,
+            repetition: false,
+            sliver_of_group: 0.0,
+            sliver_of_parent: 0.0,
+            ..GothicParams::default()
+        }
+    }
+
     pub fn bounds(&self) -> ShapeBounds {
         ShapeBounds {
             min_width: self.min_width,

@@ -2,7 +2,8 @@
 //! with the top-level elements cut out, each element rebuilt with the construction of
 //! `library/gothic_window.vsg` (spandrels = half-boxes minus the discs of the arcs, the light
 //! above the springing line = box ∩ both discs) from the same x0, y0, h, w, v, and each stone
-//! extruded by a user depth in front of the wall.
+//! extruded by a user depth in front of the wall. An element others nest in keeps a solid
+//! tympanum slab with its children's boxes cut through it (issue 23).
 
 use std::fmt::Write;
 
@@ -119,7 +120,15 @@ pub fn to_vsg(est: &GothicEstimate, masonry: Option<&Masonry>, opt: &VsgOptions)
         );
     }
     for (e, &parent) in est.elements.iter().zip(&has_children) {
-        element_rules(&mut out, e, if parent { "tympanum" } else { "glass" });
+        let children: Vec<&Element> = if parent {
+            est.elements
+                .iter()
+                .filter(|c| c.parent == Some(e.id))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        element_rules(&mut out, e, &children);
     }
     let _ = writeln!(
         out,
@@ -147,16 +156,41 @@ pub fn to_vsg(est: &GothicEstimate, masonry: Option<&Masonry>, opt: &VsgOptions)
 }
 
 /// The rules of one element, in its bounding box's frame: jambs and arch zone (split as in
-/// gothic_window.vsg), full-depth spandrels, and a recessed fill (glass, or a tympanum wall
-/// when other elements nest inside).
-fn element_rules(out: &mut String, e: &Element, fill: &str) {
+/// gothic_window.vsg), full-depth spandrels, and a recessed fill: glass for a leaf; for an
+/// element others nest in (`children`, figure 4.4(c)), a tympanum slab — the wall between the
+/// arch and the lights, kept solid — with each child's bounding box cut through it, so the
+/// child's own full-depth spandrels and glass stand in the hole and its light opens through
+/// the tympanum. The slab is then its zone's box rather than box ∩ discs (a rule has one
+/// boolean); where it leaves the arched outline it lies inside the full-depth spandrels.
+fn element_rules(out: &mut String, e: &Element, children: &[&Element]) {
     let n = format!("e{}", e.id);
-    let (z, t) = if fill == "glass" {
-        ("-depth*0.25", "depth*0.1")
+    let nested = !children.is_empty();
+    let (z, t, fill) = if nested {
+        ("-depth*0.35", "depth*0.3", "tympanum")
     } else {
-        ("-depth*0.35", "depth*0.3")
+        ("-depth*0.25", "depth*0.1", "glass")
     };
-    let jamb = format!("T(0, 0, {z}) I(\"box\", {{{n}_w, {n}_h, {t}}}){{{fill}}}");
+    // The slab of a zone of height `zh` whose centre is at model height `cy`, at depth `dz`
+    // in the rule's frame, minus every child's box.
+    // Departure from §4.2 / figure 4.4(c), whose blocks are the elements' boxes: the parent's
+    // slab is its zone's box less its children's boxes (issue 23).
+    let slab = |zh: &str, cy: &str, dz: &str| -> String {
+        let holes: String = children
+            .iter()
+            .map(|c| {
+                let m = format!("e{}", c.id);
+                format!(
+                    " T({m}_x0 + {m}_w/2 - ({n}_x0 + {n}_w/2), {m}_y0 + ({m}_h + {m}_v)/2 - ({cy}), {dz}) I(\"box\", {{{m}_w, {m}_h + {m}_v, {t} + 1}})"
+                )
+            })
+            .collect();
+        format!("T(0, 0, {dz}) I(\"box\", {{{n}_w, {zh}, {t}}}){holes} difference(){{{fill}}}")
+    };
+    let jamb = if nested {
+        slab(&format!("{n}_h"), &format!("{n}_y0 + {n}_h/2"), z)
+    } else {
+        format!("T(0, 0, {z}) I(\"box\", {{{n}_w, {n}_h, {t}}}){{{fill}}}")
+    };
     let kind = e.theta().kind(1e-3);
     if kind == ArchKind::Rectangle || e.h <= 1e-3 && e.v <= 1e-3 {
         let _ = writeln!(out, "{n} :: {jamb};");
@@ -173,6 +207,14 @@ fn element_rules(out: &mut String, e: &Element, fill: &str) {
         out,
         "{n}_arch :: I(\"box\", {{{n}_w, {n}_v, depth}}) T(0, 0, {z}) I(\"box\", {{{n}_w, {n}_v, {t}}}){{{n}_stone, {n}_light}};"
     );
+    if nested {
+        // n_light's frame is already the slab's (depth z): the holes are at 0 in it.
+        let _ = writeln!(
+            out,
+            "{n}_light :: {};",
+            slab(&format!("{n}_v"), &format!("{n}_y0 + {n}_h + {n}_v/2"), "0")
+        );
+    }
     if kind == ArchKind::Segmental {
         // One arc of radius r centred r − v below the springing line.
         let r = format!("(({n}_w*{n}_w/4 + {n}_v*{n}_v)/(2*{n}_v))");
@@ -181,10 +223,12 @@ fn element_rules(out: &mut String, e: &Element, fill: &str) {
             out,
             "{n}_stone :: I(\"box\", {{{n}_w, {n}_v, depth}}) T(0, {cy}, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{r}, depth + 1}}) difference(){{spandrel}};"
         );
-        let _ = writeln!(
-            out,
-            "{n}_light :: I(\"box\", {{{n}_w, {n}_v, {t}}}) T(0, {cy}, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{r}, {t} + 1}}) intersection(){{{fill}}};"
-        );
+        if !nested {
+            let _ = writeln!(
+                out,
+                "{n}_light :: I(\"box\", {{{n}_w, {n}_v, {t}}}) T(0, {cy}, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{r}, {t} + 1}}) intersection(){{{fill}}};"
+            );
+        }
         return;
     }
     // Round or pointed: gothic_window.vsg's rho = (w²/4 + v²)/w, arcs centred on the springing line.
@@ -201,10 +245,12 @@ fn element_rules(out: &mut String, e: &Element, fill: &str) {
         out,
         "{n}_right :: I(\"box\", {{{n}_w/2, {n}_v, depth}}) T({n}_w/4 - {rho}, -{n}_v/2, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{rho}, depth + 1}}) difference(){{spandrel}};"
     );
-    let _ = writeln!(
-        out,
-        "{n}_light :: I(\"box\", {{{n}_w, {n}_v, {t}}}) T({rho} - {n}_w/2, -{n}_v/2, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{rho}, {t} + 1}}) T({n}_w/2 - {rho}, -{n}_v/2, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{rho}, {t} + 1}}) intersection(){{{fill}}};"
-    );
+    if !nested {
+        let _ = writeln!(
+            out,
+            "{n}_light :: I(\"box\", {{{n}_w, {n}_v, {t}}}) T({rho} - {n}_w/2, -{n}_v/2, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{rho}, {t} + 1}}) T({n}_w/2 - {rho}, -{n}_v/2, 0) R(PI/2, 0, 0) I(\"cylinder\", {{{rho}, {t} + 1}}) intersection(){{{fill}}};"
+        );
+    }
 }
 
 #[cfg(test)]
@@ -274,5 +320,66 @@ mod tests {
         // The stone block is 0.3 x 0.1 x stoneDepth.
         let v = stats.volume.by_symbol["stone"];
         assert!((v - 0.3 * 0.1 * 0.05).abs() < 1e-9, "{v}");
+    }
+
+    /// Figure 4.4(c) on a two-light window: the arch, its tympanum kept solid between the arch
+    /// and the lights, and each light cut through it (its box removed from the slab, its own
+    /// spandrels and glass in the hole).
+    #[test]
+    fn a_nested_window_shows_its_arch_a_solid_tympanum_and_lights_cut_through_it() {
+        let lancet = |id: usize, x0: f64| Element {
+            id,
+            x0,
+            y0: 180.0,
+            h: 50.0,
+            w: 30.0,
+            v: 25.0,
+            parent: Some(2),
+            depth: 1,
+            ..element(id, x0, 30.0, 25.0, Some(2))
+        };
+        let arch = Element {
+            id: 2,
+            x0: 20.0,
+            y0: 190.0,
+            h: 100.0,
+            w: 120.0,
+            v: 70.0,
+            ..element(2, 20.0, 120.0, 70.0, None)
+        };
+        let est = GothicEstimate {
+            width: 200,
+            height: 220,
+            elements: vec![lancet(0, 35.0), lancet(1, 95.0), arch],
+            groups: vec![],
+        };
+        let opt = VsgOptions::default();
+        let src = to_vsg(&est, None, &opt);
+        let model = vsg::run(&src, &vsg::RunOptions::default())
+            .unwrap_or_else(|e| panic!("{}\n{src}", e.render("gothic.vsg", &src)));
+        let stats = vsg::stats::Stats::of(&model, &vsg::shape::Tessellation::default());
+        let count = |s: &str| stats.by_symbol.get(s).copied().unwrap_or(0);
+        // The arch's two spandrels and each lancet's two; the tympanum's two slabs (below and
+        // above the springing line); each lancet's glass below and above its springing line.
+        assert_eq!(count("spandrel"), 2 + 2 * 2, "{:?}", stats.by_symbol);
+        assert_eq!(count("tympanum"), 2, "{:?}", stats.by_symbol);
+        assert_eq!(count("glass"), 2 * 2, "{:?}", stats.by_symbol);
+        // Volumes in model units (100 px per unit): the slab is depth × 0.3 thick; below the
+        // springing line it is the arch's jamb box (1.2 × 1.0) less the two lancets' boxes
+        // (0.3 × 0.75 each), above it the arch zone's box (1.2 × 0.7).
+        let t = opt.wall_depth * 0.3;
+        let want = t * (1.2 * 1.0 - 2.0 * 0.3 * 0.75) + t * 1.2 * 0.7;
+        let got = stats.volume.by_symbol["tympanum"];
+        assert!((got - want).abs() < 1e-6, "tympanum volume {got} vs {want}");
+        // Without the holes the slab would be t × 1.2 × 1.7: the lights are cut through.
+        assert!(got < t * 1.2 * 1.7 - 0.1);
+        // Each light is glass: the lancet's jamb box (0.3 × 0.5) and its pointed head, 0.1 ×
+        // depth thick, all of it inside the hole.
+        let glass = stats.volume.by_symbol["glass"];
+        let g = opt.wall_depth * 0.1;
+        assert!(
+            glass > 2.0 * g * 0.3 * 0.5 && glass < 2.0 * g * 0.3 * 0.75,
+            "{glass}"
+        );
     }
 }
