@@ -74,7 +74,11 @@ fn annotations_are_well_formed() {
             if let Some(p) = e.parent {
                 assert!(p < a.elements.len() && p != i, "{f} #{i}: parent {p}");
                 let q = &a.elements[p];
-                assert_eq!(q.role, Role::Enclosing, "{f} #{i}: parent {p} is not enclosing");
+                assert_eq!(
+                    q.role,
+                    Role::Enclosing,
+                    "{f} #{i}: parent {p} is not enclosing"
+                );
                 let b = q.bbox;
                 assert!(
                     b[0] <= x0 && b[1] <= y0 && x1 <= b[2] && y1 <= b[3],

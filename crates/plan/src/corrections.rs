@@ -134,6 +134,18 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
     // walls, so the labels apply after them, regions first and then walls (a region's label
     // gives its walls §5.1.6's labels, which a wall's own label then overrules).
     let mut walls = Vec::new();
+    // The regions labelled by a point inside them: a later label on the ink beside one of
+    // them goes to the region across the wall (the simulated user's tower point on the ink of
+    // a tower's wall had relabelled the courtyard labelled just before).
+    let inside: Vec<usize> = fixes
+        .labels
+        .iter()
+        .filter(|l| !l.label.is_wall())
+        .filter_map(|l| {
+            check_point(plan, l.point).ok()?;
+            face_holding(plan, l.point)
+        })
+        .collect();
     for (i, l) in fixes.labels.iter().enumerate() {
         let fail = |why: String| FixError {
             table: FixTable::Label,
@@ -154,7 +166,8 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
             walls.push((e, l.label));
             continue;
         }
-        let f = region_at(plan, l.point)
+        let f = region_near(plan, l.point, &inside)
+            .or_else(|| region_at(plan, l.point))
             .ok_or_else(|| no_region(l.point))
             .map_err(fail)?;
         relabel(plan, f, l.label);
@@ -220,6 +233,13 @@ fn face_holding(plan: &ParsedPlan, [x, y]: [f64; 2]) -> Option<usize> {
 /// so, else (a point on a wall) the face with an open pixel nearest to it within a few wall
 /// thicknesses.
 pub fn region_at(plan: &ParsedPlan, p: [f64; 2]) -> Option<usize> {
+    region_near(plan, p, &[])
+}
+
+/// [`region_at`], except that a point on a wall does not reach the faces `set` (the regions
+/// the user has labelled by a point inside them: a click on the ink beside such a region means
+/// the region on the wall's other side).
+fn region_near(plan: &ParsedPlan, p: [f64; 2], set: &[usize]) -> Option<usize> {
     if let Some(f) = face_holding(plan, p) {
         return Some(f);
     }
@@ -233,6 +253,9 @@ pub fn region_at(plan: &ParsedPlan, p: [f64; 2]) -> Option<usize> {
     let reach = (3.0 * typical_thickness(plan)).clamp(3.0, 60.0);
     let mut best: Option<(f64, usize)> = None;
     for (fi, f) in plan.faces.iter().enumerate() {
+        if set.contains(&fi) {
+            continue;
+        }
         for r in &f.runs {
             let dy = f64::from(r[0]) - p[1];
             if dy.abs() > reach {

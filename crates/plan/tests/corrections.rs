@@ -334,3 +334,35 @@ fn merged_wards_are_one_region_without_the_wall_between() {
     assert!(e.to_string().starts_with("[[merge]] #1: the "), "{e}");
     assert!(e.to_string().contains("share no wall"), "{e}");
 }
+
+/// A region's label given on the ink beside a region the user labelled from inside goes to the
+/// region across the wall (issue 22's simulated user: a tower point on its wall's ink had
+/// relabelled the courtyard just labelled).
+#[test]
+fn a_label_on_the_ink_beside_a_labelled_region_goes_across_the_wall() {
+    let mut p = parsed();
+    let east = plan::corrections::region_at(&p, EAST).unwrap();
+    let room = plan::corrections::region_at(&p, ROOM).unwrap();
+    assert_ne!(east, room);
+    let labels = [
+        LabelFix {
+            point: ROOM,
+            label: Label::Chapel,
+        },
+        // On the wall's ink, nearer the room (x 309..) than the east ward (..299).
+        LabelFix {
+            point: [306.0, ROOM_WALL.1 as f64],
+            label: Label::GreatHall,
+        },
+    ];
+    apply(
+        &mut p,
+        PlanFixes {
+            labels: &labels,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(p.label_at(340, 60), Label::Chapel);
+    assert_eq!(p.faces[east].label, Label::GreatHall);
+}

@@ -40,7 +40,10 @@ struct Outcome {
     /// How many times the user looked at the overlay and clicked what was wrong.
     rounds: usize,
     towers: [u64; 3],
+    /// Rooms and towers with a structure of their kind within the tolerance, and at the very
+    /// pixel.
     structures_right: usize,
+    structures_right_at_pixel: usize,
     structures_checked: usize,
 }
 
@@ -191,35 +194,65 @@ async fn correct(plan: &Path, file: &str, truth: &plan::eval::DevPlan, tolerance
     }
     let before = first["towers"].as_u64().unwrap();
     let after = answer["towers"].as_u64().unwrap();
-    let wrong_after = wrong(dir.path()).len();
+    let still = wrong(dir.path());
+    let parsed = corrected(dir.path());
+    for p in &still {
+        let on_ink = parsed.walls.data[(p.y * parsed.width + p.x) as usize] == 1;
+        eprintln!(
+            "{file}: still wrong at [{}, {}]: {} read as {}{}",
+            p.x,
+            p.y,
+            p.label.name(),
+            label_near(&parsed, p, tolerance).name(),
+            if on_ink {
+                " (the point is on wall ink)"
+            } else {
+                ""
+            }
+        );
+    }
+    let wrong_after = still.len();
     let (s, r) = json(&app, "POST", "/api/reconstruct", "").await;
     assert_eq!(s, StatusCode::OK, "{file}: {r}");
-    let (mut right, mut checked) = (0, 0);
+    let (mut right, mut right_at_pixel, mut checked) = (0, 0, 0);
+    // A structure of the point's kind at the point, or within the development set's tolerance
+    // of it as its labels are read (`label_near`): an annotated room point may lie on the ink
+    // of the room's wall, where the wall is the structure.
     for p in truth.points.iter().filter(|p| p.label.is_room()) {
         checked += 1;
-        let (s, st) = json(
-            &app,
-            "GET",
-            &format!("/api/structure?x={}&y={}", p.x, p.y),
-            "",
-        )
-        .await;
-        let role = st["role"].as_str().unwrap_or("");
-        let ok = s == StatusCode::OK
-            && if p.label == Label::TowerRoom {
-                matches!(role, "tower" | "keep")
-            } else {
-                st["label"] == json_value!(p.label) && matches!(role, "range" | "room" | "keep")
-            };
-        if ok {
-            right += 1;
-        } else {
-            eprintln!(
-                "{file}: at [{}, {}] ({}) the model has {st}",
-                p.x,
-                p.y,
-                p.label.name()
-            );
+        let r = f64::from(tolerance);
+        let probes = std::iter::once((0.0, 0.0)).chain((0..8).map(|k| {
+            let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
+            (r * a.cos(), r * a.sin())
+        }));
+        let mut found = Vec::new();
+        for (i, (dx, dy)) in probes.enumerate() {
+            let (x, y) = (f64::from(p.x) + dx, f64::from(p.y) + dy);
+            let (s, st) = json(&app, "GET", &format!("/api/structure?x={x}&y={y}"), "").await;
+            let role = st["role"].as_str().unwrap_or("");
+            let ok = s == StatusCode::OK
+                && if p.label == Label::TowerRoom {
+                    matches!(role, "tower" | "keep")
+                } else {
+                    st["label"] == json_value!(p.label) && matches!(role, "range" | "room" | "keep")
+                };
+            if ok {
+                found.push(i);
+                break;
+            }
+            if i == 0 {
+                eprintln!(
+                    "{file}: at [{}, {}] ({}) the model has {st}",
+                    p.x,
+                    p.y,
+                    p.label.name()
+                );
+            }
+        }
+        match found.first() {
+            Some(0) => (right, right_at_pixel) = (right + 1, right_at_pixel + 1),
+            Some(_) => right += 1,
+            None => {}
         }
     }
     let corrections =
@@ -233,6 +266,7 @@ async fn correct(plan: &Path, file: &str, truth: &plan::eval::DevPlan, tolerance
         rounds,
         towers: [before, after, truth.towers as u64],
         structures_right: right,
+        structures_right_at_pixel: right_at_pixel,
         structures_checked: checked,
     }
 }
@@ -281,20 +315,23 @@ async fn a_simulated_user_corrects_every_development_plan() {
         .filter(|o| o.towers[0] == o.towers[2])
         .count();
     let right: usize = outcomes.iter().map(|o| o.structures_right).sum();
+    let right_at_pixel: usize = outcomes.iter().map(|o| o.structures_right_at_pixel).sum();
     let checked: usize = outcomes.iter().map(|o| o.structures_checked).sum();
     let refused: usize = outcomes.iter().map(|o| o.refused).sum();
     eprintln!(
-        "simulated user, {} plans: corrections per plan median {median}, worst {worst}; points wrong {wrong_before} → {wrong_after} of {points} ({refused} clicks refused); exact tower counts {exact_before} → {exact}; rooms and towers built right {right}/{checked}",
-        outcomes.len()
+        "simulated user, {} plans: corrections per plan median {median}, worst {worst}; points wrong {wrong_before} → {wrong_after} of {points} ({refused} clicks refused); exact tower counts {exact_before} → {exact}; rooms and towers built right {right}/{checked} within {} px ({right_at_pixel} at the very pixel)",
+        outcomes.len(),
+        set.tolerance_px
     );
     // Floors at the figures measured (docs/serve.md, "Corrections by a simulated user"): 46 →
     // 25 points wrong of 169, exact tower counts 1 → 8 of 31 (the user knows where towers are
-    // only at annotated tower points), 37 of 38 annotated rooms and towers built as their kind.
+    // only at annotated tower points), every annotated room and tower built as its kind within
+    // the set's tolerance (37 of 38 at the very pixel: Chambord's tower point lies on wall ink).
     assert!(
         wrong_after <= 26,
         "{wrong_after} of {points} points still wrong"
     );
     assert!(wrong_after < wrong_before, "{wrong_before} → {wrong_after}");
     assert!(exact >= 8, "{exact} exact tower counts");
-    assert!(right * 100 >= checked * 97, "{right}/{checked} built right");
+    assert_eq!(right, checked, "rooms and towers built right");
 }
