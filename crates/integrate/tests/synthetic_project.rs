@@ -22,6 +22,27 @@ fn run(src: &str) -> vsg::Model {
     .unwrap_or_else(|e| panic!("{}\n{src}", e.render("model.vsg", src)))
 }
 
+/// Chapter 3 on a synthetic photo of the castle, as `reconstruct` runs it (seed 7).
+fn estimate(
+    name: &str,
+    photo: &integrate::synth::Photo,
+    rectified: bool,
+) -> integrate::photo::FacadeEstimate {
+    estimate_facade(&FacadePhoto {
+        name,
+        image: &photo.image,
+        training: &photo.training,
+        lines: None,
+        rectified,
+        bbox: None,
+        metres_per_pixel: None,
+        seed: 7,
+        classifier: Default::default(),
+        fixes: &Default::default(),
+    })
+    .unwrap()
+}
+
 fn keep(structures: &[Structure]) -> &Structure {
     structures
         .iter()
@@ -42,21 +63,7 @@ fn keep_and_towers_match_facades_and_plan() {
     let estimates: Vec<_> = photos
         .iter()
         .zip(names)
-        .map(|(p, name)| {
-            estimate_facade(&FacadePhoto {
-                name,
-                image: &p.image,
-                training: &p.training,
-                lines: None,
-                rectified: false,
-                bbox: None,
-                metres_per_pixel: None,
-                seed: 7,
-                classifier: Default::default(),
-                fixes: &Default::default(),
-            })
-            .unwrap()
-        })
+        .map(|(p, name)| estimate(name, &p, false))
         .collect();
     let correspondences: Vec<Correspondence> = photos
         .iter()
@@ -181,19 +188,7 @@ fn a_facade_on_an_arc_sets_the_round_towers_height_and_storeys() {
     .unwrap();
     let photo = castle.photo(20.0, 0.0, 3);
     let name = "tower_photo.png";
-    let estimate = estimate_facade(&FacadePhoto {
-        name,
-        image: &photo.image,
-        training: &photo.training,
-        lines: None,
-        rectified: true,
-        bbox: None,
-        metres_per_pixel: None,
-        seed: 7,
-        classifier: Default::default(),
-        fixes: &Default::default(),
-    })
-    .unwrap();
+    let estimate = estimate(name, &photo, true);
     // The west tower at (110, 100), radius 36 px: from its south point counter-clockwise to
     // its east point, a quarter of the circle.
     let (c, r) = castle.towers[0];
@@ -337,19 +332,7 @@ fn a_click_outside_the_facades_is_refused_in_photo_pixels() {
     .unwrap();
     let photo = castle.photo(20.0, 0.12, 1);
     let name = "keep_south_near.png";
-    let estimate = estimate_facade(&FacadePhoto {
-        name,
-        image: &photo.image,
-        training: &photo.training,
-        lines: None,
-        rectified: false,
-        bbox: None,
-        metres_per_pixel: None,
-        seed: 7,
-        classifier: Default::default(),
-        fixes: &Default::default(),
-    })
-    .unwrap();
+    let estimate = estimate(name, &photo, false);
     let outlines = estimate.outlines_in_photo();
     assert_eq!(outlines.len(), estimate.model.facades.len());
     // Each outline rectifies back onto its façade's box, corner by corner.
