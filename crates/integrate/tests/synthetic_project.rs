@@ -63,7 +63,7 @@ fn keep_and_towers_match_facades_and_plan() {
     let estimates: Vec<_> = photos
         .iter()
         .zip(names)
-        .map(|(p, name)| estimate(name, &p, false))
+        .map(|(p, name)| estimate(name, p, false))
         .collect();
     let correspondences: Vec<Correspondence> = photos
         .iter()
