@@ -3,7 +3,7 @@
 //! `data/gothic_devset/annotations.json`, scored against the hand-drawn boxes.
 //!
 //! ```text
-//! cargo run --release -p facade --example gothic_devset [-- --hatching] [--only SUBSTRING] [--dump DIR]
+//! cargo run --release -p facade --example gothic_devset [-- --hatching] [--without-issue-23] [--only SUBSTRING] [--dump DIR]
 //! ```
 //!
 //! `--dump DIR` writes each estimate as GOTHIC.json (`DIR/NAME.json`) to look at.
@@ -274,15 +274,22 @@ fn row(name: &str, kind: &str, s: &Score, secs: f64) -> String {
 }
 
 /// The parameters `castellan gothic IMAGE` uses with its default flags (`--min-radius 8`, no
-/// `--training`), `--hatching` when asked.
-fn castellan_params(hatching: bool) -> facade::gothic::GothicParams {
+/// `--training`), `--hatching` when asked; `--without-issue-23` starts from
+/// [`GothicParams::without_issue_23`](facade::gothic::GothicParams::without_issue_23) (the
+/// estimator before the enclosing-arch grid, repetition and slivers) for a same-run comparison.
+fn castellan_params(hatching: bool, before_issue_23: bool) -> facade::gothic::GothicParams {
     let min_radius = 8.0_f64;
+    let base = if before_issue_23 {
+        facade::gothic::GothicParams::without_issue_23()
+    } else {
+        facade::gothic::GothicParams::default()
+    };
     facade::gothic::GothicParams {
         min_seed_radius: min_radius as f32,
         min_width: 2.0 * min_radius,
         min_height: 3.0 * min_radius,
         hatching: hatching.then(facade::gothic::hatching_tone::HatchParams::default),
-        ..facade::gothic::GothicParams::default()
+        ..base
     }
 }
 
@@ -314,10 +321,12 @@ fn main() {
         );
         std::process::exit(2);
     }
-    let params = castellan_params(hatching);
+    let before = args.iter().any(|a| a == "--without-issue-23");
+    let params = castellan_params(hatching, before);
     println!(
-        "Gothic development set, `castellan gothic` defaults{}; IoU ≥ {IOU_MIN}\n",
-        if hatching { " + --hatching" } else { "" }
+        "Gothic development set, `castellan gothic` defaults{}{}; IoU ≥ {IOU_MIN}\n",
+        if hatching { " + --hatching" } else { "" },
+        if before { ", without issue 23's departures" } else { "" }
     );
     println!(
         "| image | kind | GT | predicted | on difficult | recall | precision | nesting | seconds |"
