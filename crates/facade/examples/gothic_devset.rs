@@ -326,7 +326,11 @@ fn main() {
     println!(
         "Gothic development set, `castellan gothic` defaults{}{}; IoU ≥ {IOU_MIN}\n",
         if hatching { " + --hatching" } else { "" },
-        if before { ", without issue 23's departures" } else { "" }
+        if before {
+            ", without issue 23's departures"
+        } else {
+            ""
+        }
     );
     println!(
         "| image | kind | GT | predicted | on difficult | recall | precision | nesting | seconds |"

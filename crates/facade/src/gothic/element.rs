@@ -249,6 +249,20 @@ fn arc<R: Real>(out: &mut Vec<Sample<R>>, c: [R; 2], r: R, from: R, to: R, n: us
     }
 }
 
+impl Theta {
+    /// Whether this element contains `inner` with `tol` px of slack: the corners and apex of
+    /// `inner` lie inside this one grown by `tol`, and this one is larger (figure 4.4's
+    /// nesting; [`hierarchy::contains`](super::hierarchy::contains)).
+    pub fn encloses(&self, inner: &Theta, tol: f64) -> bool {
+        let g = self.grown(tol);
+        let big = self.w * (self.h + self.v) > 1.2 * inner.w * (inner.h + inner.v);
+        big && inner
+            .constraint_points()
+            .iter()
+            .all(|p| g.contains(p[0], p[1]))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -248,11 +248,11 @@ pub fn within_reach(outer: &Theta, members: &[Theta]) -> bool {
         && outer.y0 - bottom <= r + 2.0
 }
 
-/// Containment for an enclosing arch: [`contains`](super::hierarchy::contains) with the
+/// Containment for an enclosing arch: [`Theta::encloses`] with the
 /// nesting slack, and the jambs at least 2 px outside the member's (a contour on the member's
 /// own jamb would fit eq. 4.2 perfectly and enclose nothing).
 fn encloses(outer: &Theta, inner: &Theta, params: &GothicParams) -> bool {
-    super::hierarchy::contains(outer, inner, params.nesting_tolerance)
+    outer.encloses(inner, params.nesting_tolerance)
         && outer.x0 <= inner.x0 - 2.0
         && outer.x0 + outer.w >= inner.x0 + inner.w + 2.0
 }

@@ -10,12 +10,7 @@ use super::params::GothicParams;
 /// Whether `outer` contains `inner` with `tol` px of slack: the corners and apex of the
 /// inner element lie inside the grown outer one, and the outer one is larger.
 pub fn contains(outer: &Theta, inner: &Theta, tol: f64) -> bool {
-    let g = outer.grown(tol);
-    let big = outer.w * (outer.h + outer.v) > 1.2 * inner.w * (inner.h + inner.v);
-    big && inner
-        .constraint_points()
-        .iter()
-        .all(|p| g.contains(p[0], p[1]))
+    outer.encloses(inner, tol)
 }
 
 /// Starting shapes for an arch around `members`: a margin of 1 or 2 gaps on every side, the
