@@ -45,18 +45,7 @@ pub fn to_glb_with_textures(
     options: &ExportOptions,
     textures: &Textures,
 ) -> Result<Vec<u8>, ExportError> {
-    let mesh = |p: &Primitive| p.mesh(&options.tessellation);
-    let volume = |p: &Primitive| p.volume();
-    gltf::write_glb(
-        model,
-        options,
-        textures,
-        None,
-        &Geometry {
-            mesh: &mesh,
-            volume: &volume,
-        },
-    )
+    glb_of_shapes(model, options, textures, None)
 }
 
 /// Like [`to_glb_with_textures`], and describes the building's parts and elements in property
@@ -69,13 +58,24 @@ pub fn to_glb_with_metadata(
     textures: &Textures,
     heritage: &Heritage,
 ) -> Result<Vec<u8>, ExportError> {
+    glb_of_shapes(model, options, textures, Some(heritage))
+}
+
+/// The binary glTF of the model's own primitives (tessellated by `options`, exact volumes),
+/// with the property tables when `heritage` is given.
+fn glb_of_shapes(
+    model: &Model,
+    options: &ExportOptions,
+    textures: &Textures,
+    heritage: Option<&Heritage>,
+) -> Result<Vec<u8>, ExportError> {
     let mesh = |p: &Primitive| p.mesh(&options.tessellation);
     let volume = |p: &Primitive| p.volume();
     gltf::write_glb(
         model,
         options,
         textures,
-        Some(heritage),
+        heritage,
         &Geometry {
             mesh: &mesh,
             volume: &volume,
