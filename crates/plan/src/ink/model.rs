@@ -98,9 +98,10 @@ impl WallInk {
     /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
     /// multiple of it).
     pub fn wall_probability(&self, grey: &GrayImage, out_w: u32, out_h: u32) -> Vec<f32> {
-        let features = self.features(grey);
-        let p = self.working_map(&features);
-        pixelclass::resample::enlarge(&p, out_w as usize, out_h as usize).class_map(1)
+        let mut features = self.features(grey);
+        let p = self.working_map(&mut features);
+        let wall = wall_class(&p);
+        pixelclass::resample::enlarge(&wall, out_w as usize, out_h as usize).data
     }
 
     /// The features of `grey` at the working resolution ([`working_features`]).
@@ -108,12 +109,17 @@ impl WallInk {
         working_features(grey, &self.working, &self.bank, &self.ink_sigmas)
     }
 
-    /// The maps of every stage at the working resolution, given the bank's features.
-    pub fn working_map(&self, features: &Features) -> Probabilities {
+    /// The maps of every stage at the working resolution, given the bank's features; stage 2's
+    /// context planes are added to `features` for its prediction and taken off again (no copy
+    /// of the bank's planes: at 1200 × 800 they are 96 MB).
+    pub fn working_map(&self, features: &mut Features) -> Probabilities {
         let mut p = predict(&self.stages[0], features);
         if let Some(stage2) = self.stages.get(1) {
-            let f2 = with_context(features.clone(), &p, &self.context());
-            p = predict(stage2, &f2);
+            let bank = features.dim();
+            add_context(features, &p, &self.context());
+            p = predict(stage2, features);
+            features.planes.truncate(bank);
+            features.names.truncate(bank);
         }
         p
     }
@@ -139,12 +145,28 @@ pub fn smoothed_context(sigmas: &[f32]) -> AutoContext {
 
 /// The features of stage 2: the bank's plus the context of the stage-1 maps `p`.
 pub fn with_context(mut f: Features, p: &Probabilities, ac: &AutoContext) -> Features {
-    let (planes, names) = context(p, ac);
-    // Class 0's planes are 1 − class 1's: keep the wall class only.
-    let per = ac.per_class();
-    f.planes.extend(planes.into_iter().skip(per));
-    f.names.extend(names.into_iter().skip(per));
+    add_context(&mut f, p, ac);
     f
+}
+
+/// Adds the context of the wall class of `p` to `f`. Class 0's planes would be 1 − class 1's,
+/// so they are neither computed nor given to the forest.
+fn add_context(f: &mut Features, p: &Probabilities, ac: &AutoContext) {
+    let (planes, names) = context(&wall_class(p), ac);
+    f.planes.extend(planes);
+    f.names
+        .extend(names.into_iter().map(|n| n.replacen("p0", "p1", 1)));
+}
+
+/// The wall class of `p` alone. Smoothing and bilinear enlargement treat each class by
+/// itself, and class 0 is 1 − class 1: the other half of the work is not needed.
+pub fn wall_class(p: &Probabilities) -> Probabilities {
+    Probabilities {
+        width: p.width,
+        height: p.height,
+        classes: 1,
+        data: p.class_map(1),
+    }
 }
 
 /// The resolution the wall ink works at, the same in training and in use: drawings whose

@@ -10,7 +10,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::model::{WallInk, smoothed_context, with_context, working_size};
+use super::model::{WallInk, smoothed_context, wall_class, with_context, working_size};
 use super::paint::near_segment;
 
 /// At most this many strokes and points per stroke (a request is bounded).
@@ -106,8 +106,8 @@ pub fn wall_probability(
     }
     let (w, h) = grey.dimensions();
     let (ws, hs) = working_size(w, h, &model.working);
-    let f = model.features(grey);
-    let map = model.working_map(&f);
+    let mut f = model.features(grey);
+    let map = model.working_map(&mut f);
     let f = with_context(f, &map, &smoothed_context(&[1.0, 3.0, 8.0]));
     let user = stroked(strokes, w, h, ws, hs);
     let mut near = vec![false; f.width * f.height];
@@ -147,7 +147,7 @@ pub fn wall_probability(
         // Strokes and sure pixels of one class only: nothing to learn the other from.
         Err(_) => map,
     };
-    pixelclass::resample::enlarge(&p, out_w as usize, out_h as usize).class_map(1)
+    pixelclass::resample::enlarge(&wall_class(&p), out_w as usize, out_h as usize).data
 }
 
 #[cfg(test)]
