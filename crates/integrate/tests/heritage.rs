@@ -9,6 +9,8 @@
 mod cjval_check;
 #[path = "../../vsg/tests/support/ifcopenshell.rs"]
 mod ifcopenshell;
+#[path = "../../vsg/tests/support/venv.rs"]
+mod venv;
 
 use std::path::{Path, PathBuf};
 

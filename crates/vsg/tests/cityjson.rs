@@ -9,9 +9,7 @@
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::OnceLock;
-use std::time::{Instant, SystemTime, UNIX_EPOCH};
+use std::time::Instant;
 
 use nalgebra::{Isometry3, Vector3};
 use serde_json::Value;
@@ -361,123 +359,14 @@ fn surface_counts(geometry: &Value) -> BTreeMap<String, usize> {
 // ---------------------------------------------------------------------------------------------
 // The validators.
 
+#[path = "support/cjio.rs"]
+mod cjio;
 #[path = "support/cjval.rs"]
 mod cjval_check;
+#[path = "support/venv.rs"]
+mod venv;
+use cjio::assert_cjio_reads;
 use cjval_check::assert_cjval_valid;
-
-const HOW: &str = "install Python 3 with its venv module (Debian: python3-venv), or run \
-                   `python3 -m venv tools/cjio/.venv && tools/cjio/.venv/bin/pip install -r \
-                   tools/cjio/requirements.txt` from the repository root";
-
-/// The cjio program, or `None` (after saying why) when it cannot run outside CI. The venv is
-/// made and the pinned requirements installed on first use.
-fn cjio() -> Option<PathBuf> {
-    static INSTALL: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools/cjio");
-    match INSTALL.get_or_init(|| install_cjio(&dir)) {
-        Ok(exe) => Some(exe.clone()),
-        Err(why) => {
-            if std::env::var_os("CI").is_some() {
-                panic!("cannot run cjio: {why}; {HOW}");
-            }
-            eprintln!("SKIPPED cjio: {why}; {HOW}");
-            None
-        }
-    }
-}
-
-fn install_cjio(dir: &Path) -> Result<PathBuf, String> {
-    let venv = dir.join(".venv");
-    let exe = venv.join("bin/cjio");
-    if exe.is_file() {
-        return Ok(exe);
-    }
-    let run = |cmd: &mut Command, what: &str| -> Result<(), String> {
-        let out = cmd
-            .output()
-            .map_err(|e| format!("cannot run {what}: {e}"))?;
-        if out.status.success() {
-            Ok(())
-        } else {
-            Err(format!(
-                "{what} failed: {}",
-                String::from_utf8_lossy(&out.stderr).trim()
-            ))
-        }
-    };
-    run(
-        Command::new("python3").args(["-m", "venv"]).arg(&venv),
-        "`python3 -m venv`",
-    )?;
-    run(
-        Command::new(venv.join("bin/python"))
-            .args([
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "--disable-pip-version-check",
-            ])
-            .arg("-r")
-            .arg(dir.join("requirements.txt")),
-        "`pip install -r tools/cjio/requirements.txt`",
-    )?;
-    if exe.is_file() {
-        Ok(exe)
-    } else {
-        Err(format!("pip installed no {}", exe.display()))
-    }
-}
-
-/// `cjio FILE info --long` on `text`, or `None` when cjio cannot run here.
-fn cjio_info(name: &str, text: &str) -> Option<String> {
-    let exe = cjio()?;
-    let nanos = SystemTime::now()
-        .duration_since(UNIX_EPOCH)
-        .map_or(0, |d| d.as_nanos());
-    let stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "_");
-    let file = format!("castellan-{stem}-{}-{nanos}.city.json", std::process::id());
-    let path = std::env::temp_dir().join(file);
-    std::fs::write(&path, text).expect("write the temporary file");
-    let out = Command::new(&exe)
-        .arg(&path)
-        .args(["info", "--long"])
-        .output()
-        .expect("run cjio");
-    let _ = std::fs::remove_file(&path);
-    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        out.status.success(),
-        "cjio cannot read {name}:\n{stdout}\n{stderr}"
-    );
-    assert!(
-        !stderr.contains("Error") && !stdout.contains("Error"),
-        "cjio: {name}:\n{stdout}\n{stderr}"
-    );
-    eprintln!("cjio info --long: {name}:\n{stdout}");
-    Some(stdout)
-}
-
-/// Asserts that cjio reads the file as one Building with `parts` BuildingParts and
-/// `vertices` vertices, in CityJSON 2.0.
-fn assert_cjio_reads(name: &str, text: &str, parts: usize, vertices: usize) {
-    let Some(info) = cjio_info(name, text) else {
-        return;
-    };
-    let lines: Vec<&str> = info.lines().map(str::trim).collect();
-    for expected in [
-        "CityJSON version = 2.0".to_string(),
-        "|-- Building (1)".to_string(),
-        format!("|-- BuildingPart ({parts})"),
-        format!("vertices_total = {vertices}"),
-    ] {
-        assert!(
-            lines.contains(&expected.as_str()),
-            "{expected:?} in\n{info}"
-        );
-    }
-}
 
 /// Both validators on one file.
 fn assert_valid(name: &str, text: &str, doc: &Value) {

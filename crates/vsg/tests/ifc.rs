@@ -24,6 +24,8 @@ use tree::{Tree, at, prim};
 
 #[path = "support/ifcopenshell.rs"]
 mod ifcopenshell;
+#[path = "support/venv.rs"]
+mod venv;
 use ifcopenshell::check;
 
 /// Instances of `entity` (upper case, as written) in the STEP text.
