@@ -2,11 +2,12 @@
 //! white regions filled, thin lines removed by open/close, small black regions removed, and only
 //! the structure the castle forms kept. Walls are 255 ("on"), open space 0.
 
-use image::{GrayImage, Luma};
+use image::GrayImage;
 use imageproc::contrast::otsu_level;
-use imageproc::morphology::close;
-use raster::components::{Components, Connectivity, components};
-use raster::morphology::{Norm, distance_to_background, open_close, top_hat};
+use raster::components::{Components, Connectivity};
+use raster::morphology::{Norm, top_hat};
+
+use crate::pixels::{close, components, open_close};
 
 /// What pre-processing found, for reports and warnings.
 #[derive(Debug, Clone, Default, serde::Serialize)]
@@ -61,13 +62,12 @@ pub fn threshold_level(grey: &GrayImage) -> u8 {
 
 /// Binary image (255 = wall) from a grey scan.
 pub fn binarize(grey: &GrayImage, level: u8) -> GrayImage {
-    GrayImage::from_fn(grey.width(), grey.height(), |x, y| {
-        Luma([if grey.get_pixel(x, y)[0] < level {
-            255
-        } else {
-            0
-        }])
-    })
+    let raw = grey
+        .as_raw()
+        .iter()
+        .map(|&p| if p < level { 255 } else { 0 })
+        .collect();
+    GrayImage::from_raw(grey.width(), grey.height(), raw).expect("w × h pixels")
 }
 
 /// Sets every pixel of the components smaller than `min` (label 0 is background) to `to`.
@@ -124,7 +124,7 @@ pub fn preprocess_clean(
     };
     let long = img.width().max(img.height());
     let t = if cleanup.thin_lines > 0.0 || cleanup.hachures || cleanup.dashes {
-        wall_thickness(&open_close(&img, Norm::LInf, 1))
+        wall_thickness(&open_close(&img, 1))
     } else {
         0.0
     };
@@ -183,7 +183,7 @@ fn steps_two_to_five(mut img: GrayImage, min: usize, stats: &mut PreStats) -> Gr
     let white = components(&img, 0, Connectivity::Four);
     stats.filled_white = remove_small(&mut img, &white, min, 255);
     // (4): open then close with a 3 × 3 element removes lines thinner than 3 pixels.
-    img = open_close(&img, Norm::LInf, 1);
+    img = open_close(&img, 1);
     // (5): black regions under 0.05 %.
     let mut black = components(&img, 255, Connectivity::Eight);
     stats.removed_black = remove_small(&mut img, &black, min, 0);
@@ -228,11 +228,13 @@ fn steps_two_to_five(mut img: GrayImage, min: usize, stats: &mut PreStats) -> Gr
 /// Typical wall thickness in pixels: for a strip of thickness T the mean distance from its
 /// pixels to the nearest open pixel is about T / 4 (chessboard distance), so T ≈ 4 × mean.
 pub fn wall_thickness(bin: &GrayImage) -> f64 {
-    let dist = distance_to_background(bin, Norm::LInf);
+    let (w, h) = (bin.width() as usize, bin.height() as usize);
+    let open: Vec<bool> = bin.as_raw().iter().map(|&p| p != 255).collect();
+    let dist = crate::pixels::chessboard(&open, w, h);
     let (mut sum, mut n) = (0.0, 0usize);
-    for (d, b) in dist.pixels().zip(bin.pixels()) {
-        if b[0] == 255 {
-            sum += f64::from(d[0]);
+    for (&d, &b) in dist.iter().zip(bin.as_raw()) {
+        if b == 255 {
+            sum += f64::from(d);
             n += 1;
         }
     }
@@ -250,7 +252,7 @@ pub fn close_gaps(img: &mut GrayImage, radius: u8) -> usize {
     if radius == 0 {
         return 0;
     }
-    let closed = close(img, Norm::LInf, radius);
+    let closed = close(img, radius);
     let added = closed
         .pixels()
         .zip(img.pixels())
@@ -388,27 +390,35 @@ pub fn drop_marks(img: &mut GrayImage) -> usize {
     let mut shared = vec![false; white.sizes.len()];
     for y in 0..h {
         for x in 0..w {
-            let wl = white.labels[y * w + x] as usize;
+            let i = y * w + x;
+            let wl = white.labels[i] as usize;
             if wl == 0 {
                 continue;
             }
             if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
                 shared[wl] = true;
             }
-            for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
-                let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                    continue;
-                }
-                let b = black.labels[ny as usize * w + nx as usize];
+            let mut see = |b: u32| {
                 if b == 0 {
-                    continue;
+                    return;
                 }
                 match around[wl] {
                     None => around[wl] = Some(b),
                     Some(o) if o != b => shared[wl] = true,
                     _ => {}
                 }
+            };
+            if x + 1 < w {
+                see(black.labels[i + 1]);
+            }
+            if x > 0 {
+                see(black.labels[i - 1]);
+            }
+            if y + 1 < h {
+                see(black.labels[i + w]);
+            }
+            if y > 0 {
+                see(black.labels[i - w]);
             }
         }
     }
@@ -432,6 +442,7 @@ pub fn drop_marks(img: &mut GrayImage) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use image::Luma;
     use raster::morphology::complement;
 
     fn grey_from(rows: &[&str]) -> GrayImage {

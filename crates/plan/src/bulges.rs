@@ -52,20 +52,38 @@ pub(crate) fn curtain_thickness(outer: &mut [(f64, usize)]) -> Option<f64> {
 /// tower walls already labelled are left out, so nothing is counted twice.
 pub fn find(labels: &[u8], width: u32, height: u32, curtain: f64) -> Vec<BulgeTower> {
     let outside = Label::CastleSurroundings as u8;
-    let castle = GrayImage::from_fn(width, height, |x, y| {
-        Luma([if labels[(y * width + x) as usize] == outside {
-            0
-        } else {
-            255
-        }])
+    // The contours are traced in the castle's bounding box grown by a pixel (clipped to the
+    // image), which holds all of it: the same contours in the same order, shifted, at a
+    // fraction of the cost of the whole sheet.
+    let (w, h) = (width as usize, height as usize);
+    let mut bb = [usize::MAX, usize::MAX, 0, 0];
+    for (y, row) in labels.chunks(w).enumerate().take(h) {
+        if let (Some(x0), Some(x1)) = (
+            row.iter().position(|&l| l != outside),
+            row.iter().rposition(|&l| l != outside),
+        ) {
+            bb = [bb[0].min(x0), bb[1].min(y), bb[2].max(x1), bb[3].max(y)];
+        }
+    }
+    if bb[0] == usize::MAX {
+        return Vec::new();
+    }
+    let (x0, y0) = (bb[0].saturating_sub(1), bb[1].saturating_sub(1));
+    let (x1, y1) = ((bb[2] + 1).min(w - 1), (bb[3] + 1).min(h - 1));
+    let castle = GrayImage::from_fn((x1 - x0 + 1) as u32, (y1 - y0 + 1) as u32, |x, y| {
+        let i = (y as usize + y0) * w + x as usize + x0;
+        Luma([if labels[i] == outside { 0 } else { 255 }])
     });
-    let Some(outline) = find_contours::<i32>(&castle)
+    let Some(mut outline) = find_contours::<i32>(&castle)
         .into_iter()
         .filter(|c| c.border_type == BorderType::Outer)
         .max_by_key(|c| c.points.len())
     else {
         return Vec::new();
     };
+    for p in &mut outline.points {
+        (p.x, p.y) = (p.x + x0 as i32, p.y + y0 as i32);
+    }
     // Every few pixels of the outline are enough for bulges at least 1.5 walls deep, and the
     // search below costs the square of the points per wall thickness.
     let step = (curtain / 4.0).floor().max(1.0) as usize;

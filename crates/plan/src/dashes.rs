@@ -4,8 +4,8 @@
 //! open (§5.2 item 4). Runs on the thresholded drawing before the specks are removed.
 
 use image::GrayImage;
-use raster::components::{Connectivity, components};
 
+use crate::pixels::{Connectivity, components};
 use crate::strokes::{Grid, Stroke, angle_between, strokes};
 
 /// Directions that count as collinear differ by at most this (radians).

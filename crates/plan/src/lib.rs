@@ -56,6 +56,7 @@ mod inner_towers;
 pub mod label;
 mod legend;
 pub mod output;
+mod pixels;
 pub mod scale;
 pub mod scalebar;
 mod scene;
@@ -65,9 +66,6 @@ pub mod synth_styles;
 pub mod thin;
 
 use image::DynamicImage;
-
-use imageproc::distance_transform::{Norm, distance_transform};
-use raster::morphology::distance_to_background;
 
 use crate::fit::Fit;
 use crate::graph::Vertex;
@@ -275,11 +273,16 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     // The learned ink reads the drawing at its own resolution; its map is enlarged with it.
     let learned = learned_mask(&grey, k, opts)?;
     let parsed = if k == 1 {
-        parse_grey(&grey, learned, opts)?
+        parse_grey(&grey, learned, opts, &mut Laps::default())?
     } else {
         let big =
             image::imageops::resize(&grey, w * k, h * k, image::imageops::FilterType::Triangle);
-        shrink(parse_grey(&big, learned, opts)?, k, w, h)
+        shrink(
+            parse_grey(&big, learned, opts, &mut Laps::default())?,
+            k,
+            w,
+            h,
+        )
     };
     Ok(ParsedPlan {
         scale_bar,
@@ -442,13 +445,56 @@ fn learned_mask(
     })))
 }
 
+/// The wall-clock time of each step of a parse, in order (`examples/stage_times.rs`).
+#[derive(Debug, Default)]
+pub struct Laps {
+    last: Option<std::time::Instant>,
+    pub steps: Vec<(&'static str, std::time::Duration)>,
+}
+
+impl Laps {
+    /// Ends the step `name`, begun at the previous lap (or at the first call's start).
+    fn lap(&mut self, name: &'static str) {
+        let now = std::time::Instant::now();
+        if let Some(t) = self.last {
+            self.steps.push((name, now - t));
+        }
+        self.last = Some(now);
+    }
+}
+
+/// The learned wall mask of a drawing parsed at its own size (`None` with `--ink rules`), for
+/// `examples/stage_times.rs`.
+#[doc(hidden)]
+pub fn learned_mask_of(
+    grey: &image::GrayImage,
+    opts: &Options,
+) -> Result<Option<image::GrayImage>, PlanError> {
+    learned_mask(grey, 1, opts)
+}
+
+/// [`parse`]'s steps after the wall ink on `learned` ([`learned_mask_of`]; `None`: the rules'
+/// threshold), each timed, for `examples/stage_times.rs`.
+#[doc(hidden)]
+pub fn parse_mask_timed(
+    grey: &image::GrayImage,
+    learned: Option<image::GrayImage>,
+    opts: &Options,
+) -> (Result<ParsedPlan, PlanError>, Laps) {
+    let mut laps = Laps::default();
+    let p = parse_grey(grey, learned, opts, &mut laps);
+    (p, laps)
+}
+
 /// Parses `grey` (already enlarged if it was small); `learned` is the learned wall mask at
 /// its size, `None` for §5.1.2's threshold and the clean-up chain.
 fn parse_grey(
     grey: &image::GrayImage,
     learned: Option<image::GrayImage>,
     opts: &Options,
+    laps: &mut Laps,
 ) -> Result<ParsedPlan, PlanError> {
+    laps.lap("");
     let (w, h) = grey.dimensions();
     let cleanup = binarize::Cleanup {
         thin_lines: opts.thin_lines,
@@ -461,6 +507,7 @@ fn parse_grey(
         Some(mask) => binarize::preprocess_learned(mask, opts.min_region),
         None => binarize::preprocess_clean(grey, opts.min_region, &cleanup),
     };
+    laps.lap("preprocess");
     if pre.wall_pixels == 0 {
         return Err(if is_learned {
             PlanError::NoLearnedWalls
@@ -477,47 +524,63 @@ fn parse_grey(
         let cap = (w.max(h) / 150).clamp(1, 12) as f64;
         binarize::close_gaps(&mut bin, (t / 3.0).ceil().min(cap) as u8);
     }
+    laps.lap("wall_thickness + close_gaps");
     if opts.drop_marks {
         pre.dropped_marks = binarize::drop_marks(&mut bin);
         pre.wall_pixels = bin.pixels().filter(|p| p[0] == 255).count();
     }
+    laps.lap("drop_marks");
     let walls = Mask::from_gray(&bin);
     let mut skel = walls.clone();
     thin::thin(&mut skel);
+    laps.lap("mask + thin");
     let full = graph::vectorise(&skel);
+    laps.lap("vectorise");
     let (face_of, nf) = graph::faces(&skel);
+    laps.lap("faces");
     let (g, parts) = full.simplify();
+    laps.lap("simplify");
 
     // Distances: inside walls to the open space, and inside open space to the walls (`bin`
     // is 0 or 255 only).
+    // `in_wall` is read along the skeleton only, so it is not computed for every pixel.
     let (in_wall, in_open) = rayon::join(
-        || distance_to_background(&bin, Norm::L2),
-        || distance_transform(&bin, Norm::L2),
+        || {
+            let open: Vec<bool> = bin.as_raw().iter().map(|&p| p != 255).collect();
+            pixels::EuclideanAt::new(&open, w as usize, h as usize)
+        },
+        || {
+            let wall: Vec<bool> = bin.as_raw().iter().map(|&p| p > 0).collect();
+            pixels::euclidean(&wall, w as usize, h as usize)
+        },
     );
-
+    laps.lap("distance transforms");
     let wu = w as usize;
     let mut infos = vec![FaceInfo::default(); nf];
-    for (i, &f) in face_of.iter().enumerate() {
-        if f == u32::MAX {
-            continue;
-        }
-        let (x, y) = ((i % wu) as u32, (i / wu) as u32);
-        let info = &mut infos[f as usize];
-        if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
-            info.touches_border = true;
-        }
-        if walls.data[i] == 0 {
-            info.area += 1;
-            info.sum[0] += x as f64;
-            info.sum[1] += y as f64;
-            info.max_inset = info.max_inset.max(f64::from(in_open.get_pixel(x, y)[0]));
+    for (y, row) in face_of.chunks(wu).enumerate() {
+        let i0 = y * wu;
+        for (x, &f) in row.iter().enumerate() {
+            if f == u32::MAX {
+                continue;
+            }
+            let info = &mut infos[f as usize];
+            if x == 0 || y == 0 || x == wu - 1 || y == h as usize - 1 {
+                info.touches_border = true;
+            }
+            if walls.data[i0 + x] == 0 {
+                info.area += 1;
+                info.sum[0] += x as f64;
+                info.sum[1] += y as f64;
+                info.max_inset = info.max_inset.max(f64::from(in_open.as_raw()[i0 + x]));
+            }
         }
     }
+    laps.lap("face infos");
     // Twice the mean distance from a chain to the wall's edge, less the centre pixel.
     let thickness_of = |points: &[(u32, u32)]| {
         let sum: f64 = points
             .iter()
-            .map(|&(x, y)| f64::from(in_wall.get_pixel(x, y)[0]))
+            .map(|&(x, y)| f64::from(in_wall.at(x, y)))
             .sum();
         (2.0 * sum / points.len().max(1) as f64 - 1.0).max(1.0)
     };
@@ -554,6 +617,7 @@ fn parse_grey(
         edge_faces.push(fs);
         thickness.push(thickness_of(&e.points));
     }
+    laps.lap("spurs, edge faces, thickness");
     let scene = Scene {
         walls: &walls,
         skel: &skel,
@@ -566,7 +630,9 @@ fn parse_grey(
         ward_ratio: opts.ward_ratio,
     };
     let labelling = label::heuristics(&scene);
+    laps.lap("heuristics");
     let mut labels = label::pixel_labels(&scene, &labelling);
+    laps.lap("pixel labels");
 
     // §5.1.5: fits for edges, and circles / rectangles for the loops of the faces.
     let to_f = |p: &(u32, u32)| [p.0 as f64, p.1 as f64];
@@ -583,6 +649,7 @@ fn parse_grey(
             thickness: thickness[k],
         })
         .collect();
+    laps.lap("edge fits");
     let mut runs: Vec<Vec<[u32; 3]>> = vec![Vec::new(); nf];
     for (y, row) in face_of.chunks(wu).enumerate() {
         let mut x = 0;
@@ -601,6 +668,7 @@ fn parse_grey(
             runs[f as usize].push([y as u32, start as u32, x as u32 - 1]);
         }
     }
+    laps.lap("face runs");
     let mut faces = Vec::with_capacity(nf);
     for (f, (info, runs)) in infos.iter().zip(runs).enumerate() {
         let bounding: Vec<usize> = (0..edges.len())
@@ -626,6 +694,7 @@ fn parse_grey(
             runs,
         });
     }
+    laps.lap("face fits");
     let mut warnings = labelling.warnings;
     let wall_bb =
         walls
@@ -665,15 +734,18 @@ fn parse_grey(
             100.0 * pre.hatch_share
         ));
     }
+    laps.lap("wall bbox, warnings");
     let bulge_towers = if opts.bulge_towers {
         find_bulge_towers(&mut labels, &walls, &edges)
     } else {
         Vec::new()
     };
+    laps.lap("bulge towers");
     let towers = count_towers(&edges, g.vertices.len()) + bulge_towers.len();
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {
         warnings.push("no towers found on the outer wall".into());
     }
+    laps.lap("count towers");
     Ok(ParsedPlan {
         width: w,
         height: h,

@@ -94,6 +94,7 @@ fn elements() -> [Element; 8] {
     out
 }
 
+/// Whether on pixel `i` matches element `e` (what [`matches`] tabulates; checked in debug builds).
 fn hits(m: &Mask, i: usize, e: &Element) -> bool {
     let (x, y) = ((i % m.width as usize) as i32, (i / m.width as usize) as i32);
     for (dy, row) in e.iter().enumerate() {
@@ -106,31 +107,91 @@ fn hits(m: &Mask, i: usize, e: &Element) -> bool {
     true
 }
 
-/// Thins `m` in place to a one-pixel skeleton. Only border pixels can match an element (each
-/// needs an off 4-neighbour), so each pass looks at the current border alone: the cost is that
-/// of the pixels removed, not of the image times the wall thickness. Returns the passes made.
+/// The 8 neighbours of pixel index `i` as the bits of a byte, bit k for [`NEIGHBOURS`]`[k]`.
+#[inline]
+fn code(m: &Mask, i: usize) -> u8 {
+    let (w, h) = (m.width as usize, m.height as usize);
+    let (x, y) = (i % w, i / w);
+    if x > 0 && y > 0 && x + 1 < w && y + 1 < h {
+        let d = &m.data;
+        let (n, s) = (i - w, i + w);
+        d[n] | d[n + 1] << 1
+            | d[i + 1] << 2
+            | d[s + 1] << 3
+            | d[s] << 4
+            | d[s - 1] << 5
+            | d[i - 1] << 6
+            | d[n - 1] << 7
+    } else {
+        m.ring(i)
+            .iter()
+            .enumerate()
+            .fold(0, |c, (k, &v)| c | v << k)
+    }
+}
+
+/// For each neighbourhood code, the elements an on pixel with those neighbours matches (bit k
+/// for element k).
+fn matches(els: &[Element; 8]) -> [u8; 256] {
+    let mut t = [0u8; 256];
+    for (c, bits) in t.iter_mut().enumerate() {
+        for (k, e) in els.iter().enumerate() {
+            // The element's cell of each neighbour (dx, dy) is row dy + 1, column dx + 1.
+            let hit = NEIGHBOURS.iter().enumerate().all(|(b, &(dx, dy))| {
+                let want = e[(dy + 1) as usize][(dx + 1) as usize];
+                want == 2 || want == ((c >> b) & 1) as u8
+            });
+            *bits |= u8::from(hit) << k;
+        }
+    }
+    t
+}
+
+/// Thins `m` in place to a one-pixel skeleton. Each element removes, at once, every on pixel
+/// that matches it; a pixel's match can only change when a neighbour goes, so each element
+/// keeps a list of the pixels that matched it when last looked at (all of them at the start,
+/// then the neighbours of each removed pixel): the cost is that of the pixels removed, not of
+/// the image or its border times the passes. Returns the passes made.
 pub fn thin(m: &mut Mask) -> usize {
     let els = elements();
-    let w = m.width as usize;
-    let is_border = |m: &Mask, i: usize| {
-        let r = m.ring(i);
-        m.data[i] == 1 && (r[0] == 0 || r[2] == 0 || r[4] == 0 || r[6] == 0)
+    let matches = matches(&els);
+    let (w, h) = (m.width as usize, m.height as usize);
+    let mut pending: [Vec<usize>; 8] = Default::default();
+    let queue = |m: &Mask, i: usize, pending: &mut [Vec<usize>; 8]| {
+        let bits = matches[code(m, i) as usize];
+        for (k, list) in pending.iter_mut().enumerate() {
+            if bits >> k & 1 == 1 {
+                list.push(i);
+            }
+        }
     };
-    let mut cand: Vec<usize> = (0..m.data.len()).filter(|&i| is_border(m, i)).collect();
+    for i in 0..m.data.len() {
+        if m.data[i] == 1 {
+            queue(m, i, &mut pending);
+        }
+    }
+    // `stamp[i] == step`: pixel i was already taken (or queued) in this step.
     let mut stamp = vec![0u32; m.data.len()];
-    let mut round = 0u32;
+    let mut step = 0u32;
     // Each full round removes at least one layer, so it ends within max(w, h) rounds.
-    let max_rounds = (m.width.max(m.height) as usize) + 2;
+    let max_rounds = w.max(h) + 2;
     let mut rounds = 0;
     while rounds < max_rounds {
         rounds += 1;
         let mut changed = false;
-        for e in &els {
-            let del: Vec<usize> = cand
-                .iter()
-                .copied()
-                .filter(|&i| m.data[i] == 1 && hits(m, i, e))
-                .collect();
+        for k in 0..8 {
+            step += 1;
+            let mut del = std::mem::take(&mut pending[k]);
+            del.retain(|&i| {
+                let take = m.data[i] == 1
+                    && stamp[i] != step
+                    && matches[code(m, i) as usize] >> k & 1 == 1;
+                if take {
+                    stamp[i] = step;
+                }
+                take
+            });
+            debug_assert!(del.iter().all(|&i| hits(m, i, &els[k])));
             if del.is_empty() {
                 continue;
             }
@@ -138,28 +199,20 @@ pub fn thin(m: &mut Mask) -> usize {
             for &i in &del {
                 m.data[i] = 0;
             }
-            round += 1;
-            let mut next = Vec::with_capacity(cand.len() + del.len());
-            let push = |i: usize, next: &mut Vec<usize>, stamp: &mut Vec<u32>| {
-                if stamp[i] != round && m.data[i] == 1 {
-                    stamp[i] = round;
-                    next.push(i);
-                }
-            };
-            for &i in &cand {
-                push(i, &mut next, &mut stamp);
-            }
+            step += 1;
             for &i in &del {
                 let (x, y) = ((i % w) as i32, (i / w) as i32);
                 for (dx, dy) in NEIGHBOURS {
                     let (nx, ny) = (x + dx, y + dy);
-                    if nx >= 0 && ny >= 0 && nx < m.width as i32 && ny < m.height as i32 {
-                        push(ny as usize * w + nx as usize, &mut next, &mut stamp);
+                    if nx >= 0 && ny >= 0 && nx < w as i32 && ny < h as i32 {
+                        let j = ny as usize * w + nx as usize;
+                        if m.data[j] == 1 && stamp[j] != step {
+                            stamp[j] = step;
+                            queue(m, j, &mut pending);
+                        }
                     }
                 }
             }
-            next.retain(|&i| is_border(m, i));
-            cand = next;
         }
         if !changed {
             break;
@@ -280,6 +333,57 @@ mod tests {
             }
         }
         assert!(!seen[4 * 10 + 4], "{:?}", show(&m));
+    }
+
+    /// §5.1.3 as written: every element over every pixel, until a round removes nothing.
+    fn thin_reference(m: &mut Mask) -> usize {
+        let els = elements();
+        let mut rounds = 0;
+        loop {
+            rounds += 1;
+            let mut changed = false;
+            for e in &els {
+                let del: Vec<usize> = (0..m.data.len())
+                    .filter(|&i| m.data[i] == 1 && hits(m, i, e))
+                    .collect();
+                changed |= !del.is_empty();
+                for i in del {
+                    m.data[i] = 0;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        remove_staircase(m);
+        rounds
+    }
+
+    #[test]
+    fn thinning_by_lists_is_thinning_by_passes() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for (w, h) in [(1, 1), (3, 9), (40, 30), (75, 61)] {
+            for p in [0.3, 0.6, 0.9] {
+                let mut m = Mask::new(w, h);
+                for v in &mut m.data {
+                    *v = u8::from(rng.random_bool(p));
+                }
+                // Thick blocks, so that thinning takes several rounds.
+                for _ in 0..4 {
+                    let (x0, y0) = (rng.random_range(0..w), rng.random_range(0..h));
+                    for y in y0..(y0 + 14).min(h) {
+                        for x in x0..(x0 + 20).min(w) {
+                            m.data[(y * w + x) as usize] = 1;
+                        }
+                    }
+                }
+                let mut want = m.clone();
+                let rounds = thin_reference(&mut want);
+                assert_eq!(thin(&mut m), rounds);
+                assert_eq!(m, want);
+            }
+        }
     }
 
     #[test]

@@ -6,9 +6,8 @@
 use image::GrayImage;
 use serde::Serialize;
 
-use raster::components::{Connectivity, components};
-
 use crate::binarize::{binarize, threshold_level};
+use crate::pixels::{Connectivity, components};
 
 pub mod eval;
 mod grid;
