@@ -4,10 +4,10 @@
 
 use image::GrayImage;
 use imageproc::contrast::otsu_level;
-use raster::components::{Components, Connectivity};
+use raster::components::{Components, Connectivity, components};
 use raster::morphology::{Norm, top_hat};
 
-use crate::pixels::{close, components, open_close};
+use crate::pixels::{close, open_close};
 
 /// What pre-processing found, for reports and warnings.
 #[derive(Debug, Clone, Default, serde::Serialize)]

@@ -5,8 +5,8 @@
 
 use image::GrayImage;
 
-use crate::pixels::{Connectivity, components};
 use crate::strokes::{Grid, Stroke, angle_between, strokes};
+use raster::components::{Connectivity, components};
 
 /// Directions that count as collinear differ by at most this (radians).
 const ALIGNED: f64 = 0.26;

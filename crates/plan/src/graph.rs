@@ -2,8 +2,8 @@
 //! edges as pixel chains (multi-edges and loops allowed), faces with the white pixels each owns,
 //! the outer face included; and the §5.1.6 simplification (leaf edges pruned, degree-2 merged).
 
-use crate::pixels::{Connectivity, regions};
 use crate::thin::{Mask, NEIGHBOURS};
+use raster::components::{Connectivity, components_where};
 
 /// A graph vertex: a wall end or junction, at the mean of its skeleton pixels.
 #[derive(Debug, Clone, PartialEq)]
@@ -169,7 +169,7 @@ pub fn vectorise(skel: &Mask) -> Graph {
 /// (`u32::MAX` on the skeleton) and the number of faces.
 pub fn faces(skel: &Mask) -> (Vec<u32>, usize) {
     let (w, h) = (skel.width as usize, skel.height as usize);
-    let c = regions(&skel.data, w, h, 0, Connectivity::Four);
+    let c = components_where(w, h, Connectivity::Four, |i| skel.data[i] == 0);
     // Component labels count from 1 in the order of their first pixel; face ids from 0.
     let fid = c
         .labels

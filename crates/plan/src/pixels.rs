@@ -1,120 +1,15 @@
 //! Whole-image passes of the parser (§5.1.2–5.1.6) written for speed, each giving exactly what
-//! the general operation it stands for gives: connected components as `raster::components`
-//! labels them, square (L∞) dilation, erosion, opening and closing as imageproc's
-//! `morphology`, and the Euclidean distance transform as imageproc's `Norm::L2`.
+//! the general operation it stands for gives: square (L∞) dilation, erosion, opening and
+//! closing as imageproc's `morphology`, and the Euclidean distance transform as imageproc's
+//! `Norm::L2` (connected components by runs are `raster::components`').
 //!
 //! Why: on the 3000 × 2000 benchmark scan these passes were most of the parse after the wall
-//! ink (issue 26: components by a flood fill of one pixel at a time, morphology by two distance
-//! transforms per step, the L2 transform in `f64` through per-pixel accessors). Here regions are
-//! labelled by runs of a row, morphology is separable, and the distance transform works in
-//! integers (Meijster et al. 2000) — same outputs, checked against the originals in the tests.
+//! ink (issue 26: morphology by two distance transforms per step, the L2 transform in `f64`
+//! through per-pixel accessors). Here morphology is separable and the distance transform works
+//! in integers (Meijster et al. 2000) — same outputs, checked against the originals in the tests.
 
 use image::GrayImage;
-pub use raster::components::{Components, Connectivity};
 use rayon::prelude::*;
-
-/// The regions of the pixels of `data` (a `w` × `h` grid, row-major) equal to `value`,
-/// labelled exactly as `raster::components::components` labels them: from 1 in the order of
-/// each region's first pixel in raster order, with sizes and bounding boxes.
-///
-/// Runs of a row are joined to the runs of the row above they touch (union–find, the smaller
-/// label the root, so a region's root is the run that holds its first pixel).
-pub fn regions(data: &[u8], w: usize, h: usize, value: u8, conn: Connectivity) -> Components {
-    // 8-connected runs also touch diagonally: one column further on either side.
-    let reach = usize::from(conn == Connectivity::Eight);
-    // Runs as (row, first column, last column, provisional label).
-    let mut runs: Vec<(u32, u32, u32, u32)> = Vec::new();
-    let mut parent: Vec<u32> = Vec::new();
-    fn find(parent: &mut [u32], mut a: u32) -> u32 {
-        while parent[a as usize] != a {
-            let up = parent[parent[a as usize] as usize];
-            parent[a as usize] = up;
-            a = up;
-        }
-        a
-    }
-    let mut above = 0..0; // the runs of the previous row
-    for y in 0..h {
-        let row = &data[y * w..(y + 1) * w];
-        let start = runs.len();
-        let mut prev = above.start;
-        let mut x = 0;
-        while x < w {
-            if row[x] != value {
-                x += 1;
-                continue;
-            }
-            let x0 = x;
-            while x < w && row[x] == value {
-                x += 1;
-            }
-            let x1 = x - 1;
-            // Runs above overlapping [x0 - reach, x1 + reach]; they are sorted by column.
-            while prev < above.end && (runs[prev].2 as usize) + reach < x0 {
-                prev += 1;
-            }
-            let mut label = u32::MAX;
-            let mut k = prev;
-            while k < above.end && (runs[k].1 as usize) <= x1 + reach {
-                let r = find(&mut parent, runs[k].3);
-                if label == u32::MAX {
-                    label = r;
-                } else if r != label {
-                    let (lo, hi) = (r.min(label), r.max(label));
-                    parent[hi as usize] = lo;
-                    label = lo;
-                }
-                k += 1;
-            }
-            if label == u32::MAX {
-                label = parent.len() as u32;
-                parent.push(label);
-            }
-            runs.push((y as u32, x0 as u32, x1 as u32, label));
-        }
-        above = start..runs.len();
-    }
-    // Final labels from 1, in the order of the roots (the order of the regions' first pixels).
-    let mut id = vec![0u32; parent.len()];
-    let mut next = 1;
-    for l in 0..parent.len() {
-        let r = find(&mut parent, l as u32) as usize;
-        if r == l {
-            id[l] = next;
-            next += 1;
-        } else {
-            id[l] = id[r];
-        }
-    }
-    let n = next as usize;
-    let mut labels = vec![0u32; w * h];
-    let mut sizes = vec![0usize; n];
-    let mut bbox = vec![[u32::MAX, u32::MAX, 0, 0]; n];
-    for &(y, x0, x1, l) in &runs {
-        let l = id[l as usize];
-        let i = y as usize * w;
-        labels[i + x0 as usize..=i + x1 as usize].fill(l);
-        let b = &mut bbox[l as usize];
-        sizes[l as usize] += (x1 - x0 + 1) as usize;
-        *b = [b[0].min(x0), b[1].min(y), b[2].max(x1), b[3].max(y)];
-    }
-    Components {
-        labels,
-        sizes,
-        bbox,
-    }
-}
-
-/// [`regions`] of an image's pixels equal to `value`.
-pub fn components(img: &GrayImage, value: u8, conn: Connectivity) -> Components {
-    regions(
-        img.as_raw(),
-        img.width() as usize,
-        img.height() as usize,
-        value,
-        conn,
-    )
-}
 
 /// 255 where a pixel of `raw` for which `set` holds lies within L∞ distance `k` inside the
 /// image, 0 elsewhere: runs of a row widened by `k`, then each row the union of the `2k + 1`
@@ -418,18 +313,6 @@ mod tests {
             }
         }
         out
-    }
-
-    #[test]
-    fn regions_label_as_raster_does() {
-        for img in samples() {
-            for v in [0, 255] {
-                for conn in [Connectivity::Four, Connectivity::Eight] {
-                    let want = raster::components::components(&img, v, conn);
-                    assert_eq!(components(&img, v, conn), want);
-                }
-            }
-        }
     }
 
     #[test]

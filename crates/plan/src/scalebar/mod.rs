@@ -7,7 +7,7 @@ use image::GrayImage;
 use serde::Serialize;
 
 use crate::binarize::{binarize, threshold_level};
-use crate::pixels::{Connectivity, components};
+use raster::components::{Connectivity, components};
 
 pub mod eval;
 mod grid;
