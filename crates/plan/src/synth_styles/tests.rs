@@ -1,0 +1,124 @@
+//! Tests of the synthetic drawings: seeded, wall shares, clutter never on walls, styles.
+
+use super::*;
+
+#[test]
+fn synth_styles_same_seed_same_drawing() {
+    let (a, b) = (generate(7, 300, 200), generate(7, 300, 200));
+    assert_eq!(a.image, b.image);
+    assert_eq!(a.walls, b.walls);
+    let c = generate(8, 300, 200);
+    assert!(a.image != c.image && a.walls != c.walls);
+}
+
+#[test]
+fn synth_styles_wall_share_in_range() {
+    for seed in 0..50 {
+        let p = generate_with(
+            seed,
+            400,
+            300,
+            &StyleChoice {
+                clean: true,
+                ..Default::default()
+            },
+        );
+        let share = p.walls.pixels().filter(|v| v.0[0] == 255).count() as f64 / (400.0 * 300.0);
+        assert!(
+            (0.01..0.4).contains(&share),
+            "seed {seed}: wall share {share}"
+        );
+    }
+}
+
+#[test]
+fn synth_styles_solid_walls_dark_and_clutter_outside() {
+    let choice = StyleChoice {
+        walls: Some(WallStyle::Solid),
+        clean: true,
+        ..Default::default()
+    };
+    for seed in 0..10 {
+        let (sheet, style) = draw(seed, 500, 400, &choice);
+        assert!(style.second.is_none());
+        let walls = sheet.truth.count();
+        let dark = (0..sheet.truth.m.len())
+            .filter(|&i| sheet.truth.m[i] && sheet.img.as_raw()[i] < 60)
+            .count();
+        assert!(
+            dark as f64 >= 0.99 * walls as f64,
+            "seed {seed}: {dark} of {walls}"
+        );
+        assert!(sheet.clutter.count() > 0, "seed {seed}: no clutter");
+        assert!(
+            !sheet
+                .truth
+                .m
+                .iter()
+                .zip(&sheet.clutter.m)
+                .any(|(a, b)| *a && *b)
+        );
+    }
+}
+
+#[test]
+fn synth_styles_outlined_truth_covers_paper() {
+    let choice = StyleChoice {
+        walls: Some(WallStyle::Outlined),
+        thickness: Some(10.0),
+        clean: true,
+    };
+    for seed in 0..5 {
+        let p = generate_with(seed, 500, 400, &choice);
+        let truth: Vec<u8> = p
+            .walls
+            .as_raw()
+            .iter()
+            .zip(p.image.as_raw())
+            .filter(|(t, _)| **t == 255)
+            .map(|(_, v)| *v)
+            .collect();
+        let light = truth.iter().filter(|v| **v > 200).count() as f64 / truth.len() as f64;
+        assert!(light > 0.3, "seed {seed}: light share {light}");
+        assert!(light < 0.9, "seed {seed}: light share {light}");
+    }
+}
+
+#[test]
+fn synth_styles_degraded_solid_walls_stay_darker_than_paper() {
+    let choice = StyleChoice {
+        walls: Some(WallStyle::Solid),
+        ..Default::default()
+    };
+    for seed in 0..10 {
+        let p = generate_with(seed, 400, 300, &choice);
+        let (mut sum, mut n) = ([0f64; 2], [0f64; 2]);
+        for (t, v) in p.walls.as_raw().iter().zip(p.image.as_raw()) {
+            let k = (*t == 255) as usize;
+            sum[k] += *v as f64;
+            n[k] += 1.0;
+        }
+        let (paper, wall) = (sum[0] / n[0], sum[1] / n[1]);
+        assert!(
+            wall + 60.0 < paper,
+            "seed {seed}: walls {wall:.0}, rest {paper:.0}"
+        );
+    }
+}
+
+#[test]
+fn synth_styles_every_style_occurs() {
+    let seen: Vec<WallStyle> = (0..40).map(|s| generate(s, 200, 150).style.walls).collect();
+    for style in WALL_STYLES {
+        assert!(seen.contains(&style), "{style:?} never drawn");
+    }
+}
+
+#[test]
+fn synth_styles_sizes() {
+    for (w, h) in [(300, 200), (2000, 1500)] {
+        let p = generate(3, w, h);
+        assert_eq!(p.image.dimensions(), (w, h));
+        assert_eq!(p.walls.dimensions(), (w, h));
+    }
+}
