@@ -1,6 +1,7 @@
 //! The clutter of a sheet that is never wall: letters, words, vault ribs, dashed paths,
 //! dimension lines, a scale bar, a north arrow, a title, a frame, grid lines (and the
-//! terrain of `terrain`), each kind drawn with its probability.
+//! terrain of `terrain` and the hachured scarps of `moat`), each kind drawn with its
+//! probability.
 
 use std::f64::consts::PI;
 
@@ -8,6 +9,7 @@ use rand::RngExt;
 
 use super::geometry::{P, Rng, add, lerp, mul, rot, sub, u, unit};
 use super::layout::{Layout, Room};
+use super::moat::{hachure_bands, wall_hachures};
 use super::sheet::Sheet;
 use super::style::Clutter;
 use super::terrain::{contours, hachures};
@@ -15,11 +17,13 @@ use super::terrain::{contours, hachures};
 /// Draws some of every kind of clutter, each with some probability; returns the kinds drawn.
 pub(super) fn draw_clutter(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) -> Vec<Clutter> {
     type Draw = fn(&mut Sheet, &Layout, &mut Rng);
-    let kinds: [(Clutter, f64, Draw); 12] = [
+    let kinds: [(Clutter, f64, Draw); 14] = [
         (Clutter::Grid, 0.15, grid),
         (Clutter::Frame, 0.5, frame),
         (Clutter::Contours, 0.25, contours),
         (Clutter::Hachures, 0.45, hachures),
+        (Clutter::WallHachures, 0.45, wall_hachures),
+        (Clutter::HachureBands, 0.25, hachure_bands),
         (Clutter::DashedLines, 0.4, dashed_lines),
         (Clutter::VaultRibs, 0.4, vault_ribs),
         (Clutter::DimensionLines, 0.3, dimension_lines),

@@ -53,7 +53,14 @@ pub(super) fn inside_poly(p: P, pts: &[P]) -> bool {
 }
 
 /// Calls `f` for every pixel of a `w` × `h` sheet in the box lo..hi where `pred` holds.
-pub(super) fn scan(w: usize, h: usize, lo: P, hi: P, pred: impl Fn(P) -> bool, mut f: impl FnMut(usize)) {
+pub(super) fn scan(
+    w: usize,
+    h: usize,
+    lo: P,
+    hi: P,
+    pred: impl Fn(P) -> bool,
+    mut f: impl FnMut(usize),
+) {
     let x0 = lo.0.floor().max(0.0) as usize;
     let y0 = lo.1.floor().max(0.0) as usize;
     let x1 = (hi.0.ceil() + 1.0).clamp(0.0, w as f64) as usize;

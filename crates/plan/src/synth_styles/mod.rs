@@ -4,26 +4,29 @@
 //! Each seed gives a random castle (an irregular curtain with round and square towers, inner
 //! buildings and partitions, sometimes an inner ward or a keep, door gaps), its walls drawn in
 //! one or two of the [`WallStyle`]s, over clutter that is never wall (letters, words, vault
-//! ribs, hachures, contours, dashed paths, dimension lines, a scale bar, a north arrow, a title,
-//! a frame, grid lines), then degraded (paper tone and texture, grey ink, stains, blur,
+//! ribs, hachures on a ring, hachured scarps and moats against the walls, contour-like hachure
+//! bands, contours, dashed paths, dimension lines, a scale bar, a north arrow, a title, a
+//! frame, grid lines), then degraded (paper tone and texture, grey ink, stains, blur,
 //! 16-level quantisation, a JPEG round trip). The truth mask is the whole wall area, including
 //! the paper between the outlines or hatch lines of a wall; degradations never move geometry.
 //! Seeded: same seed, same drawing.
 //!
 //! Files: `style` (what a drawing holds and the choices a caller forces), `geometry` (points,
 //! the random source, pixel masks), `layout` (the castle), `sheet` (the clean drawing and its
-//! pens), `walls` (the wall styles), `clutter` and `terrain` (what is never wall), `degrade`.
+//! pens), `walls` (the wall styles), `clutter`, `terrain` and `moat` (what is never wall),
+//! `degrade`.
 
 mod clutter;
 mod degrade;
 mod geometry;
 mod layout;
+mod moat;
 mod sheet;
 mod style;
 mod terrain;
-mod walls;
 #[cfg(test)]
 mod tests;
+mod walls;
 
 use rand::{RngExt, SeedableRng};
 

@@ -39,7 +39,13 @@ pub enum Clutter {
     Letters,
     Words,
     VaultRibs,
+    /// Hachures on a ring well away from the walls.
     Hachures,
+    /// Hachured scarps and moats right against the outer face of the curtain and towers
+    /// (strokes perpendicular to it), sometimes closed by the ditch's outer edge as a line.
+    WallHachures,
+    /// Dense concentric contour-like hachure lines following the walls' outline.
+    HachureBands,
     Contours,
     DashedLines,
     DimensionLines,

@@ -1,5 +1,10 @@
 //! Tests of the synthetic drawings: seeded, wall shares, clutter never on walls, styles.
 
+use rand::SeedableRng;
+
+use super::geometry::Rng;
+use super::layout::{self, Layout};
+use super::sheet::Sheet;
 use super::*;
 
 #[test]
@@ -120,5 +125,70 @@ fn synth_styles_sizes() {
         let p = generate(3, w, h);
         assert_eq!(p.image.dimensions(), (w, h));
         assert_eq!(p.walls.dimensions(), (w, h));
+    }
+}
+
+/// A clean sheet of `seed`'s castle (walls 6 px thick) with one kind of clutter drawn.
+fn clutter_sheet(seed: u64, kind: fn(&mut Sheet, &Layout, &mut Rng)) -> Sheet {
+    let mut rng = Rng::seed_from_u64(seed);
+    let lay = layout::layout(&mut rng, 400, 300, 6.0);
+    let mut sheet = Sheet::new(400, 300, &lay);
+    kind(&mut sheet, &lay, &mut rng);
+    sheet
+}
+
+/// Clutter pixels with a wall pixel beside them (4-neighbours).
+fn touching(sheet: &Sheet) -> usize {
+    let (w, truth, ink) = (sheet.truth.w, &sheet.truth.m, &sheet.clutter.m);
+    (0..ink.len())
+        .filter(|&i| {
+            ink[i]
+                && [i.wrapping_sub(1), i + 1, i.wrapping_sub(w), i + w]
+                    .iter()
+                    .any(|&j| truth.get(j) == Some(&true))
+        })
+        .count()
+}
+
+#[test]
+fn synth_styles_wall_hachures_touch_the_walls_never_on_them() {
+    for seed in 0..8 {
+        let a = clutter_sheet(seed, super::moat::wall_hachures);
+        let b = clutter_sheet(seed, super::moat::wall_hachures);
+        assert_eq!(a.img, b.img, "seed {seed}: not deterministic");
+        assert!(
+            !a.truth.m.iter().zip(&a.clutter.m).any(|(t, c)| *t && *c),
+            "seed {seed}: a hachure pixel on a wall"
+        );
+        let n = touching(&a);
+        assert!(n >= 20, "seed {seed}: {n} hachure pixels touch a wall");
+    }
+}
+
+#[test]
+fn synth_styles_hachure_bands_follow_the_walls_never_on_them() {
+    let mut touch = 0;
+    for seed in 0..8 {
+        let a = clutter_sheet(seed, super::moat::hachure_bands);
+        let b = clutter_sheet(seed, super::moat::hachure_bands);
+        assert_eq!(a.img, b.img, "seed {seed}: not deterministic");
+        assert!(a.clutter.count() > 100, "seed {seed}: no bands");
+        assert!(
+            !a.truth.m.iter().zip(&a.clutter.m).any(|(t, c)| *t && *c),
+            "seed {seed}: a band pixel on a wall"
+        );
+        touch += usize::from(touching(&a) > 0);
+    }
+    assert!(touch >= 2, "bands start at the wall on {touch} of 8 sheets");
+}
+
+#[test]
+fn synth_styles_draw_the_scarps_against_walls() {
+    let drawn: Vec<Vec<Clutter>> = (0..40)
+        .map(|s| generate(s, 200, 150).style.clutter)
+        .collect();
+    for kind in [Clutter::WallHachures, Clutter::HachureBands] {
+        let n = drawn.iter().filter(|c| c.contains(&kind)).count();
+        assert!((3..30).contains(&n), "{kind:?} drawn on {n} of 40");
     }
 }
