@@ -15,7 +15,13 @@ use super::style::Clutter;
 use super::terrain::{contours, hachures};
 
 /// Draws some of every kind of clutter, each with some probability; returns the kinds drawn.
-pub(super) fn draw_clutter(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) -> Vec<Clutter> {
+/// Without `scarps` the kinds of `moat` are left out and draw no random numbers.
+pub(super) fn draw_clutter(
+    sheet: &mut Sheet,
+    lay: &Layout,
+    rng: &mut Rng,
+    scarps: bool,
+) -> Vec<Clutter> {
     type Draw = fn(&mut Sheet, &Layout, &mut Rng);
     let kinds: [(Clutter, f64, Draw); 14] = [
         (Clutter::Grid, 0.15, grid),
@@ -34,7 +40,11 @@ pub(super) fn draw_clutter(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) -> Ve
         (Clutter::Title, 0.4, title),
     ];
     let mut drawn = Vec::new();
+    let moat = [Clutter::WallHachures, Clutter::HachureBands];
     for (kind, p, f) in kinds {
+        if !scarps && moat.contains(&kind) {
+            continue;
+        }
         if rng.random_bool(p) {
             f(sheet, lay, rng);
             drawn.push(kind);

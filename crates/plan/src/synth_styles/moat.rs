@@ -208,8 +208,8 @@ enum Pattern {
 pub(super) fn wall_hachures(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
     let out = Outside::new(lay, rng);
     let s = lay.radius.0.min(lay.radius.1);
-    let sp = u(rng, 2.0, 5.0);
-    let lw = u(rng, 1.0, 1.8);
+    let sp = u(rng, 1.8, 4.5);
+    let lw = u(rng, 0.8, 1.5);
     let base = (lay.t * u(rng, 0.5f64.ln(), 4f64.ln()).exp()).clamp(3.0, (s * 0.3).max(4.0));
     let pattern = [
         Pattern::Even,
@@ -229,7 +229,7 @@ pub(super) fn wall_hachures(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
         sp
     });
     let nr = (lay.t * 0.8).max(4.0);
-    let wedge = u(rng, 1.8, 3.5);
+    let wedge = u(rng, 1.3, 2.5);
     for (k, &p) in seeds.iter().enumerate() {
         let n = rot(out.normal(p, nr), u(rng, -0.05, 0.05));
         let mut len = band(out.angle(p)) * u(rng, 0.85, 1.15);

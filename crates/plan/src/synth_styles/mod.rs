@@ -4,9 +4,9 @@
 //! Each seed gives a random castle (an irregular curtain with round and square towers, inner
 //! buildings and partitions, sometimes an inner ward or a keep, door gaps), its walls drawn in
 //! one or two of the [`WallStyle`]s, over clutter that is never wall (letters, words, vault
-//! ribs, hachures on a ring, hachured scarps and moats against the walls, contour-like hachure
-//! bands, contours, dashed paths, dimension lines, a scale bar, a north arrow, a title, a
-//! frame, grid lines), then degraded (paper tone and texture, grey ink, stains, blur,
+//! ribs, hachures on a ring, contours, dashed paths, dimension lines, a scale bar, a north
+//! arrow, a title, a frame, grid lines; when asked, hachured scarps and moats against the
+//! walls and contour-like hachure bands), then degraded (paper tone and texture, grey ink, stains, blur,
 //! 16-level quantisation, a JPEG round trip). The truth mask is the whole wall area, including
 //! the paper between the outlines or hatch lines of a wall; degradations never move geometry.
 //! Seeded: same seed, same drawing.
@@ -76,7 +76,7 @@ fn draw(seed: u64, width: u32, height: u32, choice: &StyleChoice) -> (Sheet, Sty
         }
     }
 
-    let clutter = draw_clutter(&mut sheet, &lay, &mut rng);
+    let clutter = draw_clutter(&mut sheet, &lay, &mut rng, choice.scarps);
     if !choice.clean {
         degrade(&mut sheet.img, &mut rng);
     }

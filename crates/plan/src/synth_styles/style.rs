@@ -77,4 +77,8 @@ pub struct StyleChoice {
     pub thickness: Option<f64>,
     /// Skip the degradations (a clean drawing: paper 255, ink 0).
     pub clean: bool,
+    /// Also draw hachured scarps and moats against the walls and contour-like hachure bands
+    /// ([`Clutter::WallHachures`], [`Clutter::HachureBands`]); off by default, which draws
+    /// exactly what the generator drew before they existed (the shipped model's recipe).
+    pub scarps: bool,
 }

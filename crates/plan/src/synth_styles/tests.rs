@@ -72,6 +72,7 @@ fn synth_styles_outlined_truth_covers_paper() {
         walls: Some(WallStyle::Outlined),
         thickness: Some(10.0),
         clean: true,
+        ..Default::default()
     };
     for seed in 0..5 {
         let p = generate_with(seed, 500, 400, &choice);
@@ -183,12 +184,18 @@ fn synth_styles_hachure_bands_follow_the_walls_never_on_them() {
 }
 
 #[test]
-fn synth_styles_draw_the_scarps_against_walls() {
+fn synth_styles_draw_the_scarps_against_walls_when_asked() {
+    let scarps = StyleChoice {
+        scarps: true,
+        ..Default::default()
+    };
     let drawn: Vec<Vec<Clutter>> = (0..40)
-        .map(|s| generate(s, 200, 150).style.clutter)
+        .map(|s| generate_with(s, 200, 150, &scarps).style.clutter)
         .collect();
     for kind in [Clutter::WallHachures, Clutter::HachureBands] {
         let n = drawn.iter().filter(|c| c.contains(&kind)).count();
         assert!((3..30).contains(&n), "{kind:?} drawn on {n} of 40");
+        let by_default = (0..40).any(|s| generate(s, 200, 150).style.clutter.contains(&kind));
+        assert!(!by_default, "{kind:?} drawn without being asked");
     }
 }
