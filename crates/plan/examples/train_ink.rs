@@ -3,7 +3,10 @@
 //! (`crates/plan/data/wall_masks*.json`; needs `../shared/data/castle_drawings_pd`).
 //!
 //! `cargo run --release -p plan --example train_ink -- [--seed 1] [--synthetic 60]
-//! [--out crates/plan/models/wall_ink.bin]`
+//! [--scarps] [--far-paper PX] [--out crates/plan/models/wall_ink.bin]`; `--scarps` also draws
+//! hachured scarps and hachure bands against the synthetic walls, `--far-paper PX` ignores the
+//! paper farther than PX from any ink on those drawings (both off for the shipped model; see
+//! docs/plan.md).
 
 #[path = "common/ink_data.rs"]
 mod ink_data;
@@ -15,6 +18,7 @@ use plan::ink::train::{TrainParams, train};
 fn main() {
     let mut seed = 1u64;
     let mut synthetic = 60usize;
+    let mut synth = ink_data::SynthOptions::default();
     let mut out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models/wall_ink.bin");
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -33,8 +37,19 @@ fn main() {
                     .parse()
                     .unwrap_or_else(|e| ink_data::fail("--synthetic", e))
             }
+            "--scarps" => synth.scarps = true,
+            "--far-paper" => {
+                synth.far_paper = Some(
+                    value("--far-paper")
+                        .parse()
+                        .unwrap_or_else(|e| ink_data::fail("--far-paper", e)),
+                )
+            }
             "--out" => out = PathBuf::from(value("--out")),
-            _ => ink_data::fail(&a, "unknown argument (--seed, --synthetic, --out)"),
+            _ => ink_data::fail(
+                &a,
+                "unknown argument (--seed, --synthetic, --scarps, --far-paper, --out)",
+            ),
         }
     }
     let Some(data) = ink_data::data_dir() else {
@@ -44,12 +59,17 @@ fn main() {
         )
     };
     let recipes = ink_data::recipes();
-    let mut sheets = ink_data::synthetic(synthetic, seed);
+    let mut sheets = ink_data::synthetic_with(synthetic, seed, synth);
     sheets.extend(recipes.iter().map(|r| ink_data::painted_sheet(&data, r)));
     let mut params = TrainParams::default();
     params.forest.seed = seed;
+    let scarps = match (synth.scarps, synth.far_paper) {
+        (false, _) => String::new(),
+        (true, None) => " with scarps".to_string(),
+        (true, Some(px)) => format!(" with scarps, paper over {px} px from ink ignored"),
+    };
     let provenance = format!(
-        "seed {seed}; {synthetic} synthetic plans; {} painted plans (crates/plan/data/wall_masks*.json)",
+        "seed {seed}; {synthetic} synthetic plans{scarps}; {} painted plans (crates/plan/data/wall_masks*.json)",
         recipes.len()
     );
     let t = std::time::Instant::now();

@@ -4,8 +4,11 @@
 
 use std::path::PathBuf;
 
+use image::{GrayImage, Luma};
+use imageproc::distance_transform::{Norm, distance_transform};
 use plan::ink::paint::{self, PaintedSet, Recipe};
 use plan::ink::train::Sheet;
+use plan::synth_styles::{Clutter, StyleChoice};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -51,9 +54,30 @@ pub fn painted_sheet(data: &std::path::Path, r: &Recipe) -> Sheet {
     Sheet { grey, truth }
 }
 
-/// `n` synthetic drawings of long side 300–1600 px, seeded.
+/// How the synthetic drawings are drawn and labelled (`train_ink --scarps --far-paper PX`).
+#[derive(Clone, Copy, Debug, Default)]
+#[allow(dead_code)] // train_ink uses it, ink_eval does not
+pub struct SynthOptions {
+    /// Also draw hachured scarps and hachure bands against the walls.
+    pub scarps: bool,
+    /// On drawings with such scarps, ignore the paper farther than this from any ink.
+    pub far_paper: Option<u8>,
+}
+
+/// `n` synthetic drawings of long side 300–1600 px, seeded (the shipped model's recipe).
+#[allow(dead_code)] // ink_eval uses it, train_ink calls `synthetic_with`
 pub fn synthetic(n: usize, seed: u64) -> Vec<Sheet> {
+    synthetic_with(n, seed, SynthOptions::default())
+}
+
+/// `n` synthetic drawings of long side 300–1600 px, seeded, drawn and labelled as `o` says.
+#[allow(dead_code)] // train_ink uses it, ink_eval does not
+pub fn synthetic_with(n: usize, seed: u64, o: SynthOptions) -> Vec<Sheet> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5e7_0001);
+    let choice = StyleChoice {
+        scarps: o.scarps,
+        ..StyleChoice::default()
+    };
     (0..n)
         .map(|_| {
             let long = rng.random_range(300..1600u32);
@@ -63,13 +87,44 @@ pub fn synthetic(n: usize, seed: u64) -> Vec<Sheet> {
             } else {
                 (short, long)
             };
-            let s = plan::synth_styles::generate(rng.random(), w, h);
+            let s = plan::synth_styles::generate_with(rng.random(), w, h, &choice);
+            let mut truth = s.walls;
+            let scarps = [Clutter::WallHachures, Clutter::HachureBands];
+            if let Some(far) = o.far_paper
+                && s.style.clutter.iter().any(|c| scarps.contains(c))
+            {
+                ignore_far_paper(&s.image, &mut truth, far);
+            }
             Sheet {
                 grey: s.image,
-                truth: s.walls,
+                truth,
             }
         })
         .collect()
+}
+
+/// Marks the paper farther than `far` pixels (chessboard) from any ink as ignored, so that the sheet's
+/// "not wall" paper samples come from the gaps between hachure strokes, letters and ribs
+/// rather than the open sheet (a sheet with hachured scarps; the other sheets keep the open
+/// paper). Ink: darker than halfway between the drawing's 1st and 90th grey percentiles.
+fn ignore_far_paper(grey: &GrayImage, truth: &mut GrayImage, far: u8) {
+    let mut sorted: Vec<u8> = grey.as_raw().clone();
+    sorted.sort_unstable();
+    let at = |q: f64| f64::from(sorted[((sorted.len() - 1) as f64 * q) as usize]);
+    let cut = (at(0.01) + at(0.9)) / 2.0;
+    let ink = GrayImage::from_fn(grey.width(), grey.height(), |x, y| {
+        Luma([if f64::from(grey.get_pixel(x, y)[0]) < cut {
+            255
+        } else {
+            0
+        }])
+    });
+    let dist = distance_transform(&ink, Norm::LInf);
+    for (t, d) in truth.pixels_mut().zip(dist.pixels()) {
+        if t[0] != paint::WALL && d[0] > far {
+            t[0] = paint::IGNORE;
+        }
+    }
 }
 
 pub fn fail(what: &str, e: impl std::fmt::Display) -> ! {
