@@ -316,7 +316,7 @@ fn relabel(plan: &mut ParsedPlan, f: usize, label: Label) {
     plan.faces[f].label = label;
     paint_face(plan, f);
     let edges = plan.faces[f].edges.clone();
-    let faces_of = faces_of_edges(plan);
+    let faces_of = plan.faces_of_edges();
     for e in edges {
         plan.edges[e].label = wall_label(plan, &faces_of[e]);
     }
@@ -331,21 +331,6 @@ fn paint_face(plan: &mut ParsedPlan, f: usize) {
             plan.labels[row + x as usize] = v;
         }
     }
-}
-
-/// Each edge's faces.
-fn faces_of_edges(plan: &ParsedPlan) -> Vec<Vec<usize>> {
-    let mut out = vec![Vec::new(); plan.edges.len()];
-    for (fi, f) in plan.faces.iter().enumerate() {
-        for &e in &f.edges {
-            if let Some(o) = out.get_mut(e)
-                && !o.contains(&fi)
-            {
-                o.push(fi);
-            }
-        }
-    }
-    out
 }
 
 /// The label §5.1.6 gives a wall between these regions: a tower room's walls are tower walls

@@ -246,6 +246,21 @@ impl ParsedPlan {
     pub fn label_at(&self, x: u32, y: u32) -> Label {
         Label::ALL[self.labels[(y * self.width + x) as usize] as usize]
     }
+
+    /// The faces on each side of every edge (distinct, at most two), by edge index.
+    pub fn faces_of_edges(&self) -> Vec<Vec<usize>> {
+        let mut out = vec![Vec::new(); self.edges.len()];
+        for (fi, f) in self.faces.iter().enumerate() {
+            for &e in &f.edges {
+                if let Some(o) = out.get_mut(e)
+                    && !o.contains(&fi)
+                {
+                    o.push(fi);
+                }
+            }
+        }
+        out
+    }
 }
 
 /// Runs §5.1.2 – §5.1.6 on a drawing.

@@ -194,7 +194,7 @@ const LOOSE_FILL: f64 = 0.45;
 pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Structure> {
     let heights = Heights::scaled(frame.units_per_metre);
     let s = frame.units_per_pixel;
-    let faces_of = walls::faces_of_edges(plan);
+    let faces_of = plan.faces_of_edges();
     let borders_field = |fi: usize| {
         plan.faces[fi].edges.iter().any(|&e| {
             faces_of[e]

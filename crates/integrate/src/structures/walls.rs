@@ -51,19 +51,6 @@ enum Becomes {
     Nothing,
 }
 
-/// The faces on each side of every edge (distinct, at most two).
-pub(super) fn faces_of_edges(plan: &ParsedPlan) -> Vec<Vec<usize>> {
-    let mut out = vec![Vec::new(); plan.edges.len()];
-    for (fi, face) in plan.faces.iter().enumerate() {
-        for &e in &face.edges {
-            if !out[e].contains(&fi) {
-                out[e].push(fi);
-            }
-        }
-    }
-    out
-}
-
 /// The typical wall thickness of the drawing: the length-weighted median over its wall edges.
 pub(super) fn typical_thickness(plan: &ParsedPlan) -> f64 {
     weighted_median(
@@ -95,7 +82,7 @@ fn weighted_median(items: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
 /// The plan's wall runs. `owned[e]`: edge `e` is a wall of a room built as its own structure;
 /// `tower_owned[e]`: … of a tower (a curtain stops at a tower, but runs along a range).
 pub(super) fn runs(plan: &ParsedPlan, owned: &[bool], tower_owned: &[bool]) -> Vec<Run> {
-    let faces = faces_of_edges(plan);
+    let faces = plan.faces_of_edges();
     let typical = typical_thickness(plan);
     let becomes: Vec<Becomes> = plan
         .edges
