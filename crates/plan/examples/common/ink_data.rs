@@ -54,14 +54,31 @@ pub fn painted_sheet(data: &std::path::Path, r: &Recipe) -> Sheet {
     Sheet { grey, truth }
 }
 
-/// How the synthetic drawings are drawn and labelled (`train_ink --scarps --far-paper PX`).
-#[derive(Clone, Copy, Debug, Default)]
+/// How the synthetic drawings are drawn and labelled. The one home of the shipped model's
+/// recipe: [`SynthOptions::default`] is what `train_ink` and `ink_eval` train on unless told
+/// otherwise (`train_ink --no-scarps --no-scarp-paper --far-paper PX`).
+#[derive(Clone, Copy, Debug)]
 #[allow(dead_code)] // train_ink uses it, ink_eval does not
 pub struct SynthOptions {
     /// Also draw hachured scarps and hachure bands against the walls.
     pub scarps: bool,
     /// On drawings with such scarps, ignore the paper farther than this from any ink.
     pub far_paper: Option<u8>,
+    /// Mark the paper inside the scarps ([`plan::synth_styles::StyledPlan::scarps`]) as
+    /// [`paint::HARD_NOT_WALL`], a pool of its own in training.
+    pub scarp_paper: bool,
+}
+
+impl Default for SynthOptions {
+    /// The shipped model's recipe (docs/plan.md, "Learned wall ink"): scarps drawn, the paper
+    /// between their strokes sampled apart, the open paper kept.
+    fn default() -> Self {
+        SynthOptions {
+            scarps: true,
+            far_paper: None,
+            scarp_paper: true,
+        }
+    }
 }
 
 /// `n` synthetic drawings of long side 300–1600 px, seeded (the shipped model's recipe).
@@ -89,6 +106,13 @@ pub fn synthetic_with(n: usize, seed: u64, o: SynthOptions) -> Vec<Sheet> {
             };
             let s = plan::synth_styles::generate_with(rng.random(), w, h, &choice);
             let mut truth = s.walls;
+            if o.scarp_paper {
+                for (t, z) in truth.pixels_mut().zip(s.scarps.pixels()) {
+                    if z[0] == 255 && t[0] != paint::WALL {
+                        t[0] = paint::HARD_NOT_WALL;
+                    }
+                }
+            }
             let scarps = [Clutter::WallHachures, Clutter::HachureBands];
             if let Some(far) = o.far_paper
                 && s.style.clutter.iter().any(|c| scarps.contains(c))

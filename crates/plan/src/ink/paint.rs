@@ -14,6 +14,10 @@ pub const WALL: u8 = 255;
 pub const NOT_WALL: u8 = 0;
 /// Mask value of a pixel left out of training and scoring (ambiguous).
 pub const IGNORE: u8 = 128;
+/// Mask value of a pixel that is not wall and that training samples as a pool of its own:
+/// the paper between the strokes of a synthetic hachured scarp (`train_ink --scarp-paper`),
+/// which the open paper of a sheet hardly samples. Scored as not wall.
+pub const HARD_NOT_WALL: u8 = 64;
 
 /// A polygon in the drawing's pixels, `[x, y]` vertices (closed implicitly).
 pub type Polygon = Vec<[f64; 2]>;

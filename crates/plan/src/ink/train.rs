@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use super::model::{
     FORMAT, WallInk, Working, smoothed_context, with_context, working_features, working_size,
 };
-use super::paint::{IGNORE, WALL};
+use super::paint::{HARD_NOT_WALL, IGNORE, WALL};
 
 /// The source of a drawing for leave-one-source-out measurement: its book, the tomes of one
 /// work taken together (one hand drew them all). The one home of this rule.
@@ -22,8 +22,8 @@ pub fn source_of(book: &str) -> String {
     }
 }
 
-/// One training drawing: its grey image and its mask ([`WALL`], not wall, or [`IGNORE`]) of
-/// the same size.
+/// One training drawing: its grey image and its mask ([`WALL`], not wall, [`HARD_NOT_WALL`]
+/// or [`IGNORE`]) of the same size.
 #[derive(Clone)]
 pub struct Sheet {
     pub grey: GrayImage,
@@ -41,7 +41,8 @@ pub struct TrainParams {
     pub context_sigmas: Vec<f32>,
     pub forest: ForestParams,
     /// Pixels sampled per class and drawing; as many again among ink that is not wall (the
-    /// letters, hatching and hachures the model must learn to refuse).
+    /// letters, hatching and hachures the model must learn to refuse), and as many again among
+    /// the paper marked [`HARD_NOT_WALL`] where a sheet has it.
     pub per_class: usize,
 }
 
@@ -186,17 +187,20 @@ fn pick(s: &Sheet, p: &TrainParams, seed: u64) -> Picks {
     let (w, h) = s.grey.dimensions();
     let (ws, hs) = working_size(w, h, &p.working);
     let norm = super::model::normalise(&s.grey);
-    let (mut wall, mut open, mut clutter) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut wall, mut open, mut clutter, mut hard) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for y in 0..hs {
         for x in 0..ws {
             // The source pixel under the working pixel's centre.
             let sx = ((f64::from(x) + 0.5) * f64::from(w) / f64::from(ws)) as u32;
             let sy = ((f64::from(y) + 0.5) * f64::from(h) / f64::from(hs)) as u32;
             let i = (y * ws + x) as usize;
+            let ink = norm.get_pixel(sx.min(w - 1), sy.min(h - 1))[0] < 128;
             match s.truth.get_pixel(sx.min(w - 1), sy.min(h - 1))[0] {
                 IGNORE => {}
                 WALL => wall.push(i),
-                _ if norm.get_pixel(sx.min(w - 1), sy.min(h - 1))[0] < 128 => clutter.push(i),
+                _ if ink => clutter.push(i),
+                HARD_NOT_WALL => hard.push(i),
                 _ => open.push(i),
             }
         }
@@ -204,7 +208,8 @@ fn pick(s: &Sheet, p: &TrainParams, seed: u64) -> Picks {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut idx = Vec::new();
     let mut labels = Vec::new();
-    for (pool, label) in [(wall, 1), (open, 0), (clutter, 0)] {
+    // An empty pool draws no random numbers: sheets without hard paper sample as before.
+    for (pool, label) in [(wall, 1), (open, 0), (clutter, 0), (hard, 0)] {
         for i in choose(pool, p.per_class, &mut rng) {
             idx.push(i);
             labels.push(label);

@@ -241,6 +241,8 @@ pub(super) fn wall_hachures(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
         let start = sub(p, mul(n, 1.0));
         let len = out.reach(p, n, len);
         let end = add(p, mul(n, len));
+        // The stroke and half the gap to its neighbours on either side.
+        sheet.scarp_band(start, end, sp * 0.75 + lw);
         if pattern == Pattern::Wedge {
             taper(sheet, start, end, lw * wedge, 0.8);
         } else {
@@ -290,6 +292,7 @@ pub(super) fn hachure_bands(sheet: &mut Sheet, lay: &Layout, rng: &mut Rng) {
         if !out.hachured(p) {
             continue;
         }
+        sheet.scarp(i);
         let a = out.angle(p);
         let r = (d - d0).max(0.0);
         let warped = width * (r / width).powf(gamma) + amp * (m * a + ph + r * 0.2).sin();

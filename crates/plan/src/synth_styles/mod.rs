@@ -49,6 +49,7 @@ pub fn generate_with(seed: u64, width: u32, height: u32, choice: &StyleChoice) -
     StyledPlan {
         image: sheet.img,
         walls: sheet.truth.to_gray(),
+        scarps: sheet.scarps.to_gray(),
         style,
     }
 }

@@ -9,11 +9,13 @@ use image::{GrayImage, Luma};
 use super::geometry::{Mask, P, add, bbox, lerp, mul, rot, scan, seg_dist, sub, unit};
 use super::layout::Layout;
 
-/// The clean drawing: paper 255, ink 0, the truth and where clutter was drawn.
+/// The clean drawing: paper 255, ink 0, the truth, where clutter was drawn and the zones of
+/// the hachured scarps (their strokes and the paper between them).
 pub(super) struct Sheet {
     pub(super) img: GrayImage,
     pub(super) truth: Mask,
     pub(super) clutter: Mask,
+    pub(super) scarps: Mask,
 }
 
 impl Sheet {
@@ -22,7 +24,22 @@ impl Sheet {
             img: GrayImage::from_pixel(w, h, Luma([255])),
             truth: lay.main.or(&lay.inner),
             clutter: Mask::new(w, h),
+            scarps: Mask::new(w, h),
         }
+    }
+    /// Marks pixel i, off the walls, as inside a hachured scarp.
+    pub(super) fn scarp(&mut self, i: usize) {
+        if !self.truth.m[i] {
+            self.scarps.m[i] = true;
+        }
+    }
+    /// Marks the pixels within `r` of the segment a–b, off the walls, as inside a scarp.
+    pub(super) fn scarp_band(&mut self, a: P, b: P, r: f64) {
+        let (w, h) = (self.truth.w, self.truth.h);
+        let mut hits = Vec::new();
+        let (lo, hi) = bbox(&[a, b], r + 1.0);
+        scan(w, h, lo, hi, |p| seg_dist(p, a, b) <= r, |i| hits.push(i));
+        hits.into_iter().for_each(|i| self.scarp(i));
     }
     /// Clutter ink of value `v` at pixel i, never on a wall.
     pub(super) fn ink(&mut self, i: usize, v: u8) {

@@ -7,6 +7,9 @@ use image::GrayImage;
 pub struct StyledPlan {
     pub image: GrayImage,
     pub walls: GrayImage,
+    /// The hachured scarps and bands against the walls (255): their strokes and the paper
+    /// between them, never a wall pixel; all 0 without [`StyleChoice::scarps`].
+    pub scarps: GrayImage,
     pub style: Style,
 }
 

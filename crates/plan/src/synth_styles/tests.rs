@@ -199,3 +199,40 @@ fn synth_styles_draw_the_scarps_against_walls_when_asked() {
         assert!(!by_default, "{kind:?} drawn without being asked");
     }
 }
+
+#[test]
+fn synth_styles_scarp_zones_hold_their_strokes_and_the_paper_between() {
+    for (seed, kind) in (0..6).flat_map(|s| {
+        [
+            (
+                s,
+                super::moat::wall_hachures as fn(&mut Sheet, &Layout, &mut Rng),
+            ),
+            (s, super::moat::hachure_bands),
+        ]
+    }) {
+        let a = clutter_sheet(seed, kind);
+        let (zone, ink, truth) = (&a.scarps.m, &a.clutter.m, &a.truth.m);
+        assert!(
+            !zone.iter().zip(truth).any(|(z, t)| *z && *t),
+            "seed {seed}: a scarp zone on a wall"
+        );
+        let strokes = ink.iter().filter(|&&c| c).count();
+        let held = ink.iter().zip(zone).filter(|(c, z)| **c && **z).count();
+        // The ditch's outer edge is drawn beyond the strokes and is not in the zone.
+        assert!(
+            held * 10 >= strokes * 8,
+            "seed {seed}: {held} of {strokes} stroke pixels in the zone"
+        );
+        let paper = zone.iter().zip(ink).filter(|(z, c)| **z && !**c).count();
+        assert!(
+            paper >= held / 2,
+            "seed {seed}: {paper} paper pixels between {held}"
+        );
+    }
+    let none = generate(3, 200, 150);
+    assert!(
+        none.scarps.pixels().all(|p| p[0] == 0),
+        "a zone without scarps"
+    );
+}
