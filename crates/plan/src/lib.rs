@@ -55,6 +55,7 @@ pub mod ink;
 mod inner_towers;
 pub mod label;
 mod legend;
+mod measure;
 pub mod output;
 mod pixels;
 pub mod scale;
@@ -69,7 +70,7 @@ use image::DynamicImage;
 
 use crate::fit::Fit;
 use crate::graph::Vertex;
-use crate::label::{FaceInfo, Label, Scene};
+use crate::label::{Label, Scene};
 use crate::thin::Mask;
 
 /// Settings of the pipeline; the defaults are the dissertation's.
@@ -313,11 +314,6 @@ fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
     pts.push(v(e.to));
     pts
 }
-
-/// Share of the sheet in diagonal hatch patterns above which a drawing parsed without the
-/// hatching step is warned that its walls may be hatched: Loftie's White Tower has 6.8 %, the
-/// other 235 castle plans at most 3.3 % (`hatched_walls::hatch_share`).
-const HATCHED_SHARE: f64 = 0.05;
 
 /// Towers: groups of tower-wall edges joined at shared vertices. Departure from counting
 /// tower-wall edges one by one: on real drawings a tower's wall is often split into several
@@ -570,68 +566,15 @@ fn parse_grey(
         },
     );
     laps.lap("distance transforms");
-    let wu = w as usize;
-    let mut infos = vec![FaceInfo::default(); nf];
-    for (y, row) in face_of.chunks(wu).enumerate() {
-        let i0 = y * wu;
-        for (x, &f) in row.iter().enumerate() {
-            if f == u32::MAX {
-                continue;
-            }
-            let info = &mut infos[f as usize];
-            if x == 0 || y == 0 || x == wu - 1 || y == h as usize - 1 {
-                info.touches_border = true;
-            }
-            if walls.data[i0 + x] == 0 {
-                info.area += 1;
-                info.sum[0] += x as f64;
-                info.sum[1] += y as f64;
-                info.max_inset = info.max_inset.max(f64::from(in_open.as_raw()[i0 + x]));
-            }
-        }
-    }
+    let infos = measure::face_infos(&face_of, nf, &walls, &in_open);
     laps.lap("face infos");
-    // Twice the mean distance from a chain to the wall's edge, less the centre pixel.
-    let thickness_of = |points: &[(u32, u32)]| {
-        let sum: f64 = points
-            .iter()
-            .map(|&(x, y)| f64::from(in_wall.at(x, y)))
-            .sum();
-        (2.0 * sum / points.len().max(1) as f64 - 1.0).max(1.0)
-    };
-    let mut kept = vec![false; full.edges.len()];
-    for &k in parts.iter().flatten() {
-        kept[k] = true;
-    }
-    let spurs: Vec<Spur> = full
+    let spurs = measure::spurs(&full, &parts, &in_wall);
+    let edge_faces = measure::edge_faces(&g, &face_of, w, h);
+    let thickness: Vec<f64> = g
         .edges
         .iter()
-        .zip(&kept)
-        .filter(|(e, k)| !**k && e.points.len() > 1)
-        .map(|(e, _)| Spur {
-            points: e.points.clone(),
-            thickness: thickness_of(&e.points),
-        })
+        .map(|e| measure::chain_thickness(&in_wall, &e.points))
         .collect();
-    let mut edge_faces = Vec::with_capacity(g.edges.len());
-    let mut thickness = Vec::with_capacity(g.edges.len());
-    for e in &g.edges {
-        let mut fs: Vec<usize> = Vec::new();
-        for &(x, y) in &e.points {
-            for (dx, dy) in [(1i32, 0i32), (-1, 0), (0, 1), (0, -1)] {
-                let (nx, ny) = (x as i32 + dx, y as i32 + dy);
-                if nx < 0 || ny < 0 || nx >= w as i32 || ny >= h as i32 {
-                    continue;
-                }
-                let f = face_of[ny as usize * wu + nx as usize];
-                if f != u32::MAX && !fs.contains(&(f as usize)) {
-                    fs.push(f as usize);
-                }
-            }
-        }
-        edge_faces.push(fs);
-        thickness.push(thickness_of(&e.points));
-    }
     laps.lap("spurs, edge faces, thickness");
     let scene = Scene {
         walls: &walls,
@@ -650,7 +593,6 @@ fn parse_grey(
     laps.lap("pixel labels");
 
     // §5.1.5: fits for edges, and circles / rectangles for the loops of the faces.
-    let to_f = |p: &(u32, u32)| [p.0 as f64, p.1 as f64];
     let edges: Vec<PlanEdge> = g
         .edges
         .iter()
@@ -665,90 +607,19 @@ fn parse_grey(
         })
         .collect();
     laps.lap("edge fits");
-    let mut runs: Vec<Vec<[u32; 3]>> = vec![Vec::new(); nf];
-    for (y, row) in face_of.chunks(wu).enumerate() {
-        let mut x = 0;
-        while x < wu {
-            let f = row[x];
-            let open = |x: usize| row[x] == f && walls.data[y * wu + x] == 0;
-            if f == u32::MAX || !open(x) || labelling.faces[f as usize] == Label::CastleSurroundings
-            {
-                x += 1;
-                continue;
-            }
-            let start = x;
-            while x < wu && open(x) {
-                x += 1;
-            }
-            runs[f as usize].push([y as u32, start as u32, x as u32 - 1]);
-        }
-    }
+    let runs = measure::face_runs(&face_of, nf, &walls, &labelling.faces);
     laps.lap("face runs");
-    let mut faces = Vec::with_capacity(nf);
-    for (f, (info, runs)) in infos.iter().zip(runs).enumerate() {
-        let bounding: Vec<usize> = (0..edges.len())
-            .filter(|&e| edge_faces[e].contains(&f))
-            .collect();
-        let label = labelling.faces[f];
-        let shape = if label == Label::CastleSurroundings || bounding.is_empty() {
-            None
-        } else {
-            let pts: Vec<[f64; 2]> = bounding
-                .iter()
-                .flat_map(|&e| edges[e].points.iter().map(to_f))
-                .collect();
-            fit::fit_face(&pts, opts.face_tolerance)
-        };
-        let a = info.area.max(1) as f64;
-        faces.push(PlanFace {
-            label,
-            area: info.area,
-            centroid: [info.sum[0] / a, info.sum[1] / a],
-            shape,
-            edges: bounding,
-            runs,
-        });
-    }
+    let faces = measure::plan_faces(
+        &infos,
+        runs,
+        &edges,
+        &edge_faces,
+        &labelling,
+        opts.face_tolerance,
+    );
     laps.lap("face fits");
     let mut warnings = labelling.warnings;
-    let wall_bb =
-        walls
-            .data
-            .chunks(wu)
-            .enumerate()
-            .fold([u32::MAX, u32::MAX, 0, 0], |mut bb, (y, row)| {
-                for (x, &v) in row.iter().enumerate() {
-                    if v == 1 {
-                        bb = [
-                            bb[0].min(x as u32),
-                            bb[1].min(y as u32),
-                            bb[2].max(x as u32),
-                            bb[3].max(y as u32),
-                        ];
-                    }
-                }
-                bb
-            });
-    if wall_bb[0] == 0 || wall_bb[1] == 0 || wall_bb[2] == w - 1 || wall_bb[3] == h - 1 {
-        warnings.push(
-            "the walls reach the edge of the image: the castle may extend off it (§5.2 item 1)"
-                .into(),
-        );
-    }
-    let castle_area =
-        f64::from(wall_bb[2] - wall_bb[0] + 1) * f64::from(wall_bb[3] - wall_bb[1] + 1);
-    if castle_area < 0.01 * f64::from(w) * f64::from(h) {
-        warnings.push(
-            "the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)"
-                .into(),
-        );
-    }
-    if pre.hatch_share >= HATCHED_SHARE {
-        warnings.push(format!(
-            "diagonal hatch patterns cover {:.1} % of the sheet: if the walls are drawn hatched, parse with hatching on (--hatching, or hatching = true in a project)",
-            100.0 * pre.hatch_share
-        ));
-    }
+    warnings.extend(measure::sheet_warnings(&walls, &pre));
     laps.lap("wall bbox, warnings");
     let bulge_towers = if opts.bulge_towers {
         find_bulge_towers(&mut labels, &walls, &edges)
