@@ -56,6 +56,7 @@ mod inner_towers;
 pub mod label;
 mod legend;
 mod measure;
+pub use measure::{PlanFace, Spur};
 pub mod output;
 mod pixels;
 pub mod scale;
@@ -188,32 +189,6 @@ pub struct PlanEdge {
     pub fit: Option<Fit>,
     /// Wall thickness, pixels (twice the mean distance from the skeleton to the wall's edge).
     pub thickness: f64,
-}
-
-/// A wall chain the §5.1.6 simplification prunes (a leaf of the skeleton's graph: a wall
-/// running out into the field, a solid mass drawn hatched, a stub): chapter 5 neither labels
-/// nor fits it, but the model builds the thick ones (issue 25).
-#[derive(Debug, Clone)]
-pub struct Spur {
-    /// Skeleton pixels, in order.
-    pub points: Vec<(u32, u32)>,
-    /// Wall thickness, pixels, measured as an edge's is.
-    pub thickness: f64,
-}
-
-/// An open space bounded by walls.
-#[derive(Debug, Clone)]
-pub struct PlanFace {
-    pub label: Label,
-    /// Open pixels the face owns.
-    pub area: usize,
-    pub centroid: [f64; 2],
-    pub shape: Option<Fit>,
-    /// Indices of the bounding edges.
-    pub edges: Vec<usize>,
-    /// Its open pixels as row runs `[y, x0, x1]` (x1 inclusive), top to bottom; empty for the
-    /// surroundings. The model builds a room §5.1.5 could not fit from them (issue 25).
-    pub runs: Vec<[u32; 3]>,
 }
 
 /// The parsed drawing.
@@ -609,10 +584,11 @@ fn parse_grey(
     laps.lap("edge fits");
     let runs = measure::face_runs(&face_of, nf, &walls, &labelling.faces);
     laps.lap("face runs");
+    let edge_points: Vec<&[(u32, u32)]> = edges.iter().map(|e| e.points.as_slice()).collect();
     let faces = measure::plan_faces(
         &infos,
         runs,
-        &edges,
+        &edge_points,
         &edge_faces,
         &labelling,
         opts.face_tolerance,

@@ -5,11 +5,38 @@
 //! item 1 read from the walls' extent. Split out of `parse_grey` so that the pipeline reads as
 //! its steps.
 
+use crate::binarize;
+use crate::fit::{self, Fit};
 use crate::graph::Graph;
 use crate::label::{FaceInfo, Label, Labelling};
 use crate::pixels::EuclideanAt;
 use crate::thin::Mask;
-use crate::{PlanEdge, PlanFace, Spur, binarize, fit};
+
+/// A wall chain the §5.1.6 simplification prunes (a leaf of the skeleton's graph: a wall
+/// running out into the field, a solid mass drawn hatched, a stub): chapter 5 neither labels
+/// nor fits it, but the model builds the thick ones (issue 25).
+#[derive(Debug, Clone)]
+pub struct Spur {
+    /// Skeleton pixels, in order.
+    pub points: Vec<(u32, u32)>,
+    /// Wall thickness, pixels, measured as an edge's is.
+    pub thickness: f64,
+}
+
+/// An open space bounded by walls.
+#[derive(Debug, Clone)]
+pub struct PlanFace {
+    pub label: Label,
+    /// Open pixels the face owns.
+    pub area: usize,
+    pub centroid: [f64; 2],
+    pub shape: Option<Fit>,
+    /// Indices of the bounding edges.
+    pub edges: Vec<usize>,
+    /// Its open pixels as row runs `[y, x0, x1]` (x1 inclusive), top to bottom; empty for the
+    /// surroundings. The model builds a room §5.1.5 could not fit from them (issue 25).
+    pub runs: Vec<[u32; 3]>,
+}
 
 /// Share of the sheet in diagonal hatch patterns above which a drawing parsed without the
 /// hatching step is warned that its walls may be hatched: Loftie's White Tower has 6.8 %, the
@@ -128,11 +155,12 @@ pub(crate) fn face_runs(
 }
 
 /// The labelled faces with their bounding edges and §5.1.5's circle or rectangle, fitted to the
-/// skeleton pixels of the edges around them within `tolerance` (none for the surroundings).
+/// skeleton pixels of the edges around them (`edge_points`, per edge) within `tolerance` (none
+/// for the surroundings).
 pub(crate) fn plan_faces(
     infos: &[FaceInfo],
     runs: Vec<Vec<[u32; 3]>>,
-    edges: &[PlanEdge],
+    edge_points: &[&[(u32, u32)]],
     edge_faces: &[Vec<usize>],
     labelling: &Labelling,
     tolerance: f64,
@@ -143,7 +171,7 @@ pub(crate) fn plan_faces(
         .zip(runs)
         .enumerate()
         .map(|(f, (info, runs))| {
-            let bounding: Vec<usize> = (0..edges.len())
+            let bounding: Vec<usize> = (0..edge_points.len())
                 .filter(|&e| edge_faces[e].contains(&f))
                 .collect();
             let label = labelling.faces[f];
@@ -152,7 +180,7 @@ pub(crate) fn plan_faces(
             } else {
                 let pts: Vec<[f64; 2]> = bounding
                     .iter()
-                    .flat_map(|&e| edges[e].points.iter().map(to_f))
+                    .flat_map(|&e| edge_points[e].iter().map(to_f))
                     .collect();
                 fit::fit_face(&pts, tolerance)
             };
