@@ -54,10 +54,10 @@ pub fn painted_sheet(data: &std::path::Path, r: &Recipe) -> Sheet {
     Sheet { grey, truth }
 }
 
-/// How the synthetic drawings are drawn and labelled. The one home of the shipped model's
-/// recipe: [`SynthOptions::default`] is what `train_ink` and `ink_eval` train on unless told
-/// otherwise (`train_ink --no-scarps --no-scarp-paper --far-paper PX`).
-#[derive(Clone, Copy, Debug)]
+/// How the synthetic drawings are drawn and labelled. The one home of the training recipe:
+/// [`SynthOptions::default`] is the shipped model's, which `train_ink` and `ink_eval` train on
+/// unless told otherwise (`train_ink --scarps --scarp-paper --far-paper PX`).
+#[derive(Clone, Copy, Debug, Default)]
 #[allow(dead_code)] // train_ink uses it, ink_eval does not
 pub struct SynthOptions {
     /// Also draw hachured scarps and hachure bands against the walls.
@@ -67,18 +67,6 @@ pub struct SynthOptions {
     /// Mark the paper inside the scarps ([`plan::synth_styles::StyledPlan::scarps`]) as
     /// [`paint::HARD_NOT_WALL`], a pool of its own in training.
     pub scarp_paper: bool,
-}
-
-impl Default for SynthOptions {
-    /// The shipped model's recipe (docs/plan.md, "Learned wall ink"): scarps drawn, the paper
-    /// between their strokes sampled apart, the open paper kept.
-    fn default() -> Self {
-        SynthOptions {
-            scarps: true,
-            far_paper: None,
-            scarp_paper: true,
-        }
-    }
 }
 
 /// `n` synthetic drawings of long side 300–1600 px, seeded (the shipped model's recipe).
