@@ -146,19 +146,9 @@ pub fn heuristics(s: &Scene) -> Labelling {
 
 /// Largest side of the bounding box of the walls.
 fn castle_extent(walls: &Mask) -> f64 {
-    let w = walls.width as usize;
-    let mut bb = [usize::MAX, usize::MAX, 0, 0];
-    for (i, &v) in walls.data.iter().enumerate() {
-        if v == 1 {
-            let (x, y) = (i % w, i / w);
-            bb = [bb[0].min(x), bb[1].min(y), bb[2].max(x), bb[3].max(y)];
-        }
-    }
-    if bb[0] == usize::MAX {
-        0.0
-    } else {
-        (bb[2] - bb[0]).max(bb[3] - bb[1]) as f64 + 1.0
-    }
+    walls
+        .bounding_box()
+        .map_or(0.0, |b| f64::from((b[2] - b[0]).max(b[3] - b[1])) + 1.0)
 }
 
 /// §5.1.6 (4): compares the edge's chain with the straight chord between its vertices. The

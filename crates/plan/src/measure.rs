@@ -202,35 +202,22 @@ pub(crate) fn plan_faces(
 pub(crate) fn sheet_warnings(walls: &Mask, pre: &binarize::PreStats) -> Vec<String> {
     let (w, h) = (walls.width, walls.height);
     let mut warnings = Vec::new();
-    let wall_bb = walls.data.chunks(w as usize).enumerate().fold(
-        [u32::MAX, u32::MAX, 0, 0],
-        |mut bb, (y, row)| {
-            for (x, &v) in row.iter().enumerate() {
-                if v == 1 {
-                    bb = [
-                        bb[0].min(x as u32),
-                        bb[1].min(y as u32),
-                        bb[2].max(x as u32),
-                        bb[3].max(y as u32),
-                    ];
-                }
-            }
-            bb
-        },
-    );
-    if wall_bb[0] == 0 || wall_bb[1] == 0 || wall_bb[2] == w - 1 || wall_bb[3] == h - 1 {
-        warnings.push(
-            "the walls reach the edge of the image: the castle may extend off it (§5.2 item 1)"
-                .into(),
-        );
-    }
-    let castle_area =
-        f64::from(wall_bb[2] - wall_bb[0] + 1) * f64::from(wall_bb[3] - wall_bb[1] + 1);
-    if castle_area < 0.01 * f64::from(w) * f64::from(h) {
-        warnings.push(
-            "the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)"
-                .into(),
-        );
+    // parse_grey returns before this when no wall is left.
+    if let Some(wall_bb) = walls.bounding_box() {
+        if wall_bb[0] == 0 || wall_bb[1] == 0 || wall_bb[2] == w - 1 || wall_bb[3] == h - 1 {
+            warnings.push(
+                "the walls reach the edge of the image: the castle may extend off it (§5.2 item 1)"
+                    .into(),
+            );
+        }
+        let castle_area =
+            f64::from(wall_bb[2] - wall_bb[0] + 1) * f64::from(wall_bb[3] - wall_bb[1] + 1);
+        if castle_area < 0.01 * f64::from(w) * f64::from(h) {
+            warnings.push(
+                "the castle covers under 1 % of the image: too small to parse reliably (§5.2 item 1)"
+                    .into(),
+            );
+        }
     }
     if pre.hatch_share >= HATCHED_SHARE {
         warnings.push(format!(

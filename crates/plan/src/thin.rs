@@ -40,6 +40,25 @@ impl Mask {
         }
     }
 
+    /// The smallest box `[x0, y0, x1, y1]` (inclusive) holding every on pixel; `None` when
+    /// none is on.
+    pub fn bounding_box(&self) -> Option<[u32; 4]> {
+        let mut bb: Option<[u32; 4]> = None;
+        for (y, row) in self.data.chunks(self.width as usize).enumerate() {
+            if let (Some(x0), Some(x1)) = (
+                row.iter().position(|&v| v == 1),
+                row.iter().rposition(|&v| v == 1),
+            ) {
+                let (x0, x1, y) = (x0 as u32, x1 as u32, y as u32);
+                bb = Some(match bb {
+                    None => [x0, y, x1, y],
+                    Some(b) => [b[0].min(x0), b[1], b[2].max(x1), y],
+                });
+            }
+        }
+        bb
+    }
+
     #[inline]
     pub fn get(&self, x: i32, y: i32) -> u8 {
         if x < 0 || y < 0 || x >= self.width as i32 || y >= self.height as i32 {
@@ -265,6 +284,14 @@ mod tests {
             .chunks(m.width as usize)
             .map(|r| r.iter().map(|&v| if v == 1 { '#' } else { '.' }).collect())
             .collect()
+    }
+
+    #[test]
+    fn the_bounding_box_holds_every_on_pixel_and_no_more() {
+        let m = mask(&["......", "...#..", ".#....", "....#.", "......"]);
+        assert_eq!(m.bounding_box(), Some([1, 1, 4, 3]));
+        assert_eq!(mask(&["#"]).bounding_box(), Some([0, 0, 0, 0]));
+        assert_eq!(mask(&["...", "..."]).bounding_box(), None);
     }
 
     #[test]

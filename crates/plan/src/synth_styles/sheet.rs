@@ -35,11 +35,23 @@ impl Sheet {
     }
     /// Marks the pixels within `r` of the segment a–b, off the walls, as inside a scarp.
     pub(super) fn scarp_band(&mut self, a: P, b: P, r: f64) {
-        let (w, h) = (self.truth.w, self.truth.h);
+        self.near_segment(a, b, r)
+            .into_iter()
+            .for_each(|i| self.scarp(i));
+    }
+    /// The pixels whose centres lie within `r` of the segment a–b.
+    fn near_segment(&self, a: P, b: P, r: f64) -> Vec<usize> {
         let mut hits = Vec::new();
         let (lo, hi) = bbox(&[a, b], r + 1.0);
-        scan(w, h, lo, hi, |p| seg_dist(p, a, b) <= r, |i| hits.push(i));
-        hits.into_iter().for_each(|i| self.scarp(i));
+        scan(
+            self.truth.w,
+            self.truth.h,
+            lo,
+            hi,
+            |p| seg_dist(p, a, b) <= r,
+            |i| hits.push(i),
+        );
+        hits
     }
     /// Clutter ink of value `v` at pixel i, never on a wall.
     pub(super) fn ink(&mut self, i: usize, v: u8) {
@@ -50,12 +62,10 @@ impl Sheet {
         }
     }
     pub(super) fn line(&mut self, a: P, b: P, lw: f64, v: u8) {
-        let (w, h) = (self.truth.w, self.truth.h);
         let r = (lw / 2.0).max(0.55);
-        let mut hits = Vec::new();
-        let (lo, hi) = bbox(&[a, b], r + 1.0);
-        scan(w, h, lo, hi, |p| seg_dist(p, a, b) <= r, |i| hits.push(i));
-        hits.into_iter().for_each(|i| self.ink(i, v));
+        self.near_segment(a, b, r)
+            .into_iter()
+            .for_each(|i| self.ink(i, v));
     }
     pub(super) fn polyline(&mut self, pts: &[P], lw: f64, v: u8) {
         pts.windows(2).for_each(|s| self.line(s[0], s[1], lw, v));
