@@ -165,11 +165,15 @@ pub enum Footprint {
         blocks: Vec<Block>,
     },
     /// A wall `thickness` thick along a centreline (straight pieces, arcs as short chords);
-    /// `closed` when it is a ring (the last point is then joined to the first).
+    /// `closed` when it is a ring (the last point is then joined to the first). `widths`, when
+    /// given, is each piece's own thickness as drawn ([`Footprint::pieces`] order; issue 25),
+    /// and `thickness` the run's median.
     Wall {
         centerline: Vec<[f64; 2]>,
         thickness: f64,
         closed: bool,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        widths: Vec<f64>,
     },
 }
 
@@ -340,6 +344,22 @@ impl Footprint {
             out.push([centerline[centerline.len() - 1], centerline[0]]);
         }
         out
+    }
+
+    /// Each straight piece of a wall with its thickness: its drawn width where `widths` gives
+    /// one, else the wall's thickness (none for rectangles and circles).
+    pub fn pieces_with_widths(&self) -> Vec<([[f64; 2]; 2], f64)> {
+        let Footprint::Wall {
+            thickness, widths, ..
+        } = self
+        else {
+            return Vec::new();
+        };
+        self.pieces()
+            .into_iter()
+            .enumerate()
+            .map(|(k, p)| (p, widths.get(k).copied().unwrap_or(*thickness)))
+            .collect()
     }
 }
 

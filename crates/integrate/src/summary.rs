@@ -127,6 +127,7 @@ mod tests {
                     centerline: vec![[0.0, 0.0], [30.0, 0.0], [30.0, 40.0]],
                     thickness: 3.0,
                     closed: false,
+                    widths: Vec::new(),
                 },
                 _ => Footprint::Circle {
                     center: [0.0, 0.0],

@@ -55,13 +55,14 @@ fn show(a: &Agreement) -> String {
 fn coucy_model_covers_its_plan_at_least_as_well_as_today() {
     let r = reconstruct("coucy");
     let a = &r.agreement;
-    // Measured (issue 25): IoU 0.802, precision 0.911, recall 0.870, every room (21) and tower
-    // (6) built; before the structures of issue 25, 0.721, 0.953, 0.747, 11 / 21 and 4 / 6.
+    // Measured (issue 25): IoU 0.829, precision 0.918, recall 0.896, every room (21) and tower
+    // (6) built; with one thickness per wall run, 0.802, 0.911, 0.870; before the structures of
+    // issue 25, 0.721, 0.953, 0.747, 11 / 21 and 4 / 6.
     // The floors leave 0.02 for floating-point drift between builds; what is missing is the
     // hachured band round the donjon's moat and the outworks' ends
     // (overlays/plan_model.png).
-    assert!(a.iou >= 0.78, "{}", show(a));
-    assert!(a.recall >= 0.85, "{}", show(a));
+    assert!(a.iou >= 0.81, "{}", show(a));
+    assert!(a.recall >= 0.87, "{}", show(a));
     assert_eq!(a.towers_present(), a.towers.len(), "{}", show(a));
     assert_eq!(a.rooms_present(), a.rooms.len(), "{}", show(a));
     // stats.json carries the same figures.
@@ -77,8 +78,8 @@ fn coucy_model_covers_its_plan_at_least_as_well_as_today() {
 fn the_synthetic_castle_is_built_where_it_is_drawn() {
     let r = reconstruct("demo");
     let a = &r.agreement;
-    // Measured: IoU 0.956, precision 0.962, recall 0.994, rooms 3 / 3, towers 2 / 2 (0.958
-    // before issue 25's structures).
+    // Measured: IoU 0.957, precision 0.961, recall 0.996, rooms 3 / 3, towers 2 / 2 (0.956
+    // with one thickness per wall run, 0.958 before issue 25's structures).
     assert!(a.iou >= 0.94, "{}", show(a));
     assert_eq!(a.rooms_present(), a.rooms.len(), "{}", show(a));
     assert_eq!(a.towers_present(), a.towers.len(), "{}", show(a));

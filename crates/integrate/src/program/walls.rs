@@ -17,7 +17,12 @@ use super::common::{Part, n};
 /// stone colour, as the library's structures take them).
 pub(super) fn run(s: &Structure, textures: Option<&str>) -> Part {
     let mut out = Part::default();
-    let Footprint::Wall { thickness, .. } = s.footprint else {
+    let Footprint::Wall {
+        thickness,
+        ref widths,
+        ..
+    } = s.footprint
+    else {
         return out;
     };
     let id = &s.id;
@@ -27,19 +32,33 @@ pub(super) fn run(s: &Structure, textures: Option<&str>) -> Part {
         n(s.height),
         n(thickness)
     );
-    for [a, b] in s.footprint.pieces() {
+    // Each piece's own thickness as drawn (issue 25), when the plan measured it.
+    if !widths.is_empty() {
+        let list: Vec<String> = widths.iter().map(|w| n(*w)).collect();
+        let _ = writeln!(
+            out.params,
+            "float[] {id}W = {{{}}}; // each piece's thickness as drawn",
+            list.join(", ")
+        );
+    }
+    for (k, ([a, b], width)) in s.footprint.pieces_with_widths().into_iter().enumerate() {
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = dx.hypot(dy);
         if len < 1e-9 {
             continue;
         }
+        let depth = if widths.is_empty() {
+            format!("{id}H[1]")
+        } else {
+            format!("{id}W[{k}]")
+        };
         out.axiom.push((
             format!(
-                "T({}, {id}H[0]/2, {}) R(0, {}, 0) I(\"box\", {{{}, {id}H[0], {id}H[1]}})",
+                "T({}, {id}H[0]/2, {}) R(0, {}, 0) I(\"box\", {{{}, {id}H[0], {depth}}})",
                 n((a[0] + b[0]) / 2.0),
                 n((a[1] + b[1]) / 2.0),
                 n(-dy.atan2(dx)),
-                n(len + thickness)
+                n(len + width)
             ),
             id.clone(),
         ));

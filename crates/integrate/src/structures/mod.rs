@@ -6,6 +6,7 @@
 //! curtain, wall). Heights are the class defaults of §5.3 until a façade says otherwise.
 
 mod blocks;
+mod drawn;
 mod roles;
 mod walls;
 
@@ -576,6 +577,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             ),
         );
         let thickness = run.thickness * s;
+        let (centerline, widths) =
+            drawn::onto_ink(&plan.walls, &run.points, run.closed, run.thickness);
         out.push(Structure {
             children: hierarchy(&id, Kind::Solid),
             id,
@@ -583,9 +586,10 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             role: run.role,
             kind: Kind::Solid,
             footprint: Footprint::Wall {
-                centerline: run.points.iter().map(|p| [p[0] * s, p[1] * s]).collect(),
+                centerline: centerline.iter().map(|p| [p[0] * s, p[1] * s]).collect(),
                 thickness,
                 closed: run.closed,
+                widths: widths.iter().map(|w| w * s).collect(),
             },
             height,
             wall_thickness: thickness,
