@@ -80,11 +80,12 @@ fn demo_reconstructs_coucy_from_its_real_drawings() {
     assert_eq!(keep[0]["footprint"]["type"], "circle");
     assert!(keep[0]["height"].as_f64().unwrap() > height);
     // The curtain in a few runs from tower to tower (4) and the outworks' walls running out
-    // (5 pieces), not fragments; no wall is a tower (the donjon's moat ring is curtain, not a
-    // 20 m tower wall).
+    // (7 pieces, 5 to 44 m long; 5 before the pruned chains were joined end to end, which made
+    // the south-east outwork whole), not fragments; no wall is a tower (the donjon's moat ring
+    // is curtain, not a 20 m tower wall).
     let curtain = with_role("curtain");
     assert!(
-        (2..=10).contains(&curtain.len()),
+        (2..=12).contains(&curtain.len()),
         "{} curtain runs",
         curtain.len()
     );
@@ -94,7 +95,7 @@ fn demo_reconstructs_coucy_from_its_real_drawings() {
             .filter(|s| s["footprint"]["type"] == "wall")
             .all(|s| s["role"] == "curtain" || s["role"] == "wall")
     );
-    assert!(structures.len() <= 40, "{} structures", structures.len());
+    assert!(structures.len() <= 44, "{} structures", structures.len());
     for f in [
         "model.glb",
         "index.html",

@@ -8,6 +8,7 @@
 mod blocks;
 mod drawn;
 mod roles;
+mod spurs;
 mod walls;
 
 use std::collections::BTreeMap;
@@ -522,7 +523,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
         out.push(gate);
     }
     let runs = walls::runs(plan, &owned, &tower_owned);
-    for run in runs.into_iter().chain(walls::spur_runs(plan)) {
+    for run in runs.into_iter().chain(spurs::runs(plan)) {
         if run.points.len() < 2 {
             continue;
         }

@@ -21,7 +21,7 @@ use crate::estimate::Role;
 const LINE_BELOW: f64 = 0.4;
 /// A chain that divides nothing (its two sides are one face, or it dangles) is a wall only
 /// when at least this share of the typical wall thick (a spur or a wall running out).
-const SPUR_FROM: f64 = 0.6;
+pub(super) const SPUR_FROM: f64 = 0.6;
 /// An edge's fit stands for it when its mean distance to the chain is within this share of the
 /// wall's thickness (or a pixel): on Coucy the worst fit kept strays by 0.23 of its wall (the
 /// arc round the donjon's moat), the synthetic castle's three sides drawn as one chain by 1.4.
@@ -62,7 +62,7 @@ pub(super) fn typical_thickness(plan: &ParsedPlan) -> f64 {
     .unwrap_or(2.0)
 }
 
-fn weighted_median(items: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
+pub(super) fn weighted_median(items: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
     let mut v: Vec<(f64, f64)> = items.collect();
     if v.is_empty() {
         return None;
@@ -280,66 +280,6 @@ fn run(plan: &ParsedPlan, role: Role, edges: Vec<usize>, closed: bool) -> Run {
     }
 }
 
-/// A spur is a wall when it is as thick as a wall must be to stand alone (`SPUR_FROM` of the
-/// typical wall) and longer than this many thicknesses — the shorter ones are the skeleton's
-/// whiskers at a thick wall's corners and ends.
-const SPUR_LENGTH: f64 = 2.0;
-
-/// The spurs that are walls (issue 25: §5.1.6 prunes every leaf of the graph, among them the
-/// walls running out into the field and the buildings drawn as solid masses): curtain when the
-/// plan labels them outer or tower wall — an outwork's wall, crenellated — else inner walls.
-pub(super) fn spur_runs(plan: &ParsedPlan) -> Vec<Run> {
-    let typical = typical_thickness(plan);
-    plan.spurs
-        .iter()
-        .filter(|s| s.thickness >= SPUR_FROM * typical)
-        .filter_map(|spur| {
-            let chain: Vec<[f64; 2]> = spur
-                .points
-                .iter()
-                .map(|&(x, y)| [f64::from(x), f64::from(y)])
-                .collect();
-            let length: f64 = chain
-                .windows(2)
-                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-                .sum();
-            if length < SPUR_LENGTH * spur.thickness {
-                return None;
-            }
-            let outer = spur
-                .points
-                .iter()
-                .filter(|&&(x, y)| {
-                    matches!(
-                        plan.label_at(x, y),
-                        Label::CastleOuterWall | Label::TowerWall
-                    )
-                })
-                .count();
-            let role = if 2 * outer > spur.points.len() {
-                Role::Curtain
-            } else {
-                Role::Wall
-            };
-            let (first, last) = (*chain.first()?, *chain.last()?);
-            let mut points = vec![first];
-            points.extend(corners(&chain, (0.5 * spur.thickness).max(1.5)));
-            points.push(last);
-            if role == Role::Curtain && field_on_right(plan, &points, false, spur.thickness) {
-                points.reverse();
-            }
-            Some(Run {
-                role,
-                edges: Vec::new(),
-                points,
-                closed: false,
-                thickness: spur.thickness,
-                spur: true,
-            })
-        })
-        .collect()
-}
-
 /// The vertex a chain of edges starts from.
 fn chain_start(plan: &ParsedPlan, edges: &[usize]) -> usize {
     let first = &plan.edges[edges[0]];
@@ -409,7 +349,7 @@ fn edge_points(plan: &ParsedPlan, e: usize) -> Vec<[f64; 2]> {
 /// wall are not its shape, Douglas–Peucker), a line is fitted to each piece (§5.1.5's line
 /// fit), and each corner is where two neighbouring lines meet — the skeleton itself rounds a
 /// corner off, so its own point there lies inside the wall's corner.
-fn corners(chain: &[[f64; 2]], eps: f64) -> Vec<[f64; 2]> {
+pub(super) fn corners(chain: &[[f64; 2]], eps: f64) -> Vec<[f64; 2]> {
     let kept = simplify(chain, eps);
     if kept.len() <= 2 {
         return Vec::new();
@@ -451,7 +391,12 @@ fn corners(chain: &[[f64; 2]], eps: f64) -> Vec<[f64; 2]> {
 /// Whether the castle's surroundings lie on the right of the centreline as the drawing is seen
 /// (the convention puts the field on the left): the labels just beyond each face of the wall,
 /// counted over every piece, weighted by its length.
-fn field_on_right(plan: &ParsedPlan, points: &[[f64; 2]], closed: bool, thickness: f64) -> bool {
+pub(super) fn field_on_right(
+    plan: &ParsedPlan,
+    points: &[[f64; 2]],
+    closed: bool,
+    thickness: f64,
+) -> bool {
     let mut pieces: Vec<[[f64; 2]; 2]> = points.windows(2).map(|w| [w[0], w[1]]).collect();
     if closed && points.len() > 2 {
         pieces.push([points[points.len() - 1], points[0]]);
