@@ -73,6 +73,8 @@ pub(super) fn sides(walls: &Mask, a: [f64; 2], b: [f64; 2], thickness: f64) -> O
     Some([median(&mut l), median(&mut r)])
 }
 
+/// The median, halfway between the middle two of an even count (the cross-sections' widths
+/// are in half pixels: `roles::median`'s upper one moves the docs' figures, 0.801 → 0.800).
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
     let n = v.len();
