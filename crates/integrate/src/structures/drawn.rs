@@ -67,7 +67,7 @@ pub(super) fn sides(walls: &Mask, a: [f64; 2], b: [f64; 2], thickness: f64) -> O
             r.push(dr);
         }
     }
-    if count == 0 || (l.len() as f64) < MEASURED_SHARE * count as f64 {
+    if (l.len() as f64) < MEASURED_SHARE * count as f64 {
         return None;
     }
     Some([median(&mut l), median(&mut r)])

@@ -62,8 +62,7 @@ fn around((x, y): (i64, i64)) -> impl Iterator<Item = (i64, i64)> {
 fn join(plan: &ParsedPlan, kept: &[usize]) -> Vec<Vec<(usize, bool)>> {
     let n = kept.len();
     let at: Vec<[(i64, i64); 2]> = kept.iter().map(|&k| ends(&plan.spurs[k].points)).collect();
-    let meets = |a: (i64, i64), b: (i64, i64)| (a.0 - b.0).abs() <= 1 && (a.1 - b.1).abs() <= 1;
-    // The ends of other kept spurs that each end meets.
+    // The ends of other kept spurs that each end meets (within a pixel, 8-neighbours).
     let mut by_pixel: HashMap<(i64, i64), Vec<(usize, usize)>> = HashMap::new();
     for (i, pair) in at.iter().enumerate() {
         for (j, &end) in pair.iter().enumerate() {
@@ -75,7 +74,7 @@ fn join(plan: &ParsedPlan, kept: &[usize]) -> Vec<Vec<(usize, bool)>> {
             .filter_map(|p| by_pixel.get(&p))
             .flatten()
             .copied()
-            .filter(|&(i2, j2)| i2 != i && meets(at[i][j], at[i2][j2]))
+            .filter(|&(i2, _)| i2 != i)
             .collect();
         v.sort_unstable();
         v.dedup();
