@@ -540,7 +540,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                 image,
                 if run.spur {
                     format!(
-                        "a wall chain §5.1.6 prunes (a leaf of the skeleton's graph: a wall running out, a solid mass), kept for its thickness (issue 25), its straight pieces fitted{}",
+                        "wall chains §5.1.6 prunes (leaves of the skeleton's graph: a wall running out, a solid mass) joined end to end, kept for their thickness and length (issue 25), the straight pieces fitted and each laid on the wall as drawn{}",
                         if run.role == Role::Curtain {
                             "; the plan labels it outer or tower wall"
                         } else {
@@ -549,7 +549,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                     )
                 } else {
                     format!(
-                        "§5.1.5 fits of plan edges {:?} joined into one run (issue 25: a line between vertices, arcs as chords, collinear pieces merged){}",
+                        "§5.1.5 fits of plan edges {:?} joined into one run (issue 25: a line between vertices, arcs as chords, collinear pieces merged), each straight piece laid on the middle of the wall as drawn{}",
                         run.edges,
                         if run.role == Role::Curtain {
                             "; it borders the castle's surroundings, which lie on its left"
@@ -565,7 +565,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             "wall_thickness".to_string(),
             Provenance::new(
                 image,
-                "§5.1.4 length-weighted median thickness of its edges",
+                "§5.1.4 length-weighted median thickness of its edges; each straight piece takes its own width as drawn (`widths`, issue 25)",
                 None,
             ),
         );
