@@ -42,7 +42,10 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
                 &training,
                 &params,
                 &SearchParams::default(),
-                &RepeatParams::default(),
+                &RepeatParams {
+                    grow: RepeatParams::default().grow.filter(|_| !args.boxes_as_drawn),
+                    ..Default::default()
+                },
                 &fixes,
             )
         },
@@ -78,10 +81,16 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         .flat_map(|f| &f.floors)
         .map(|fl| fl.windows.len())
         .sum();
-    // The window boxes were whole windows: say how many repeats backed the search.
+    // The window boxes were (or were grown into) whole windows: say how many repeats backed
+    // the search.
+    let grown = if training.whole_windows.is_empty() {
+        "grown "
+    } else {
+        ""
+    };
     let repeated = repeats.map_or(String::new(), |r| {
         format!(
-            "; the drawn windows' repeats proposed {} window(s) in {} column(s) and {} row(s)",
+            "; the {grown}windows' repeats proposed {} window(s) in {} column(s) and {} row(s)",
             r.windows.len(),
             r.columns.len(),
             r.rows.len()
@@ -130,6 +139,11 @@ pub struct FacadeArgs {
     /// keeps the lines and columns given and finds the rest.
     #[arg(long, value_name = "FIX.json")]
     pub fix: Option<PathBuf>,
+    /// Keep small window boxes as drawn (the text's user, §3.1.2). By default, when no box is
+    /// a whole window, each window box is grown into the window it lies in on a first map and
+    /// then trains as a whole window (its ring of wall, its repeats; docs/facade.md).
+    #[arg(long)]
+    pub boxes_as_drawn: bool,
 }
 
 #[cfg(test)]
@@ -171,6 +185,12 @@ mod flag_tests {
         assert_eq!(a.labels, Some(PathBuf::from("l.png")));
         assert_eq!(a.overlay, Some(PathBuf::from("o.png")));
         assert_eq!(a.seed, 9);
+    }
+
+    #[test]
+    fn facade_boxes_as_drawn_flag() {
+        assert!(!facade_args(&[]).unwrap().boxes_as_drawn);
+        assert!(facade_args(&["--boxes-as-drawn"]).unwrap().boxes_as_drawn);
     }
 
     #[test]
@@ -229,6 +249,7 @@ mod bad_input_tests {
             classifier: Method::Forest,
             seed: 7,
             fix,
+            boxes_as_drawn: false,
         };
         let err = run(&args).expect_err("bad input must fail");
         (

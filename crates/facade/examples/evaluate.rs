@@ -22,6 +22,9 @@
 //! - FACADE_REPEAT=0|1: the repeat step of `facade::parse_photo` (proposals from whole-window
 //!   boxes added to the window evidence, weight FACADE_REPEAT_WEIGHT, acceptance
 //!   FACADE_REPEAT_THRESHOLD); prints the proposals' precision and recall.
+//! - FACADE_GROW=0|1: small window boxes grown into whole windows on a first map
+//!   (`facade::grow`), FACADE_GROW_THRESHOLD, FACADE_GROW_MAX, FACADE_GROW_MIN, FACADE_GROW_SNAP: `GrowParams`;
+//!   FACADE_GROW_DIAG=1 prints how the boxes grew against their true windows.
 //! - FACADE_AC=0|1, FACADE_AC_FOLDS, FACADE_AC_ROWCOL, FACADE_AC_SIGMAS, FACADE_AC_FOLD_TREES,
 //!   FACADE_AC_AVERAGE:
 //!   the forest's autocontext stage (`pixelclass::AutoContext`).
@@ -290,6 +293,17 @@ fn repeat_params() -> RepeatParams {
         } else {
             0.0
         },
+        grow: (env_str("FACADE_GROW", if d.grow.is_some() { "1" } else { "0" }) == "1").then(
+            || {
+                let g = d.grow.unwrap_or_default();
+                facade::grow::GrowParams {
+                    threshold: env_f64("FACADE_GROW_THRESHOLD", g.threshold),
+                    max_frac: env_f64("FACADE_GROW_MAX", g.max_frac),
+                    min_growth: env_f64("FACADE_GROW_MIN", g.min_growth),
+                    snap: env_f64("FACADE_GROW_SNAP", g.snap),
+                }
+            },
+        ),
         ..d
     }
 }
@@ -355,6 +369,7 @@ struct Sums {
     proposals: usize,
     good: usize,
     true_windows: usize,
+    grow: [f64; 5],
 }
 
 /// FACADE_DIAG: where the tree loses against the map.
@@ -407,6 +422,69 @@ fn diagnose(d: &mut Diag, ll: &LogLikelihoods, truth: &[u8], pred: &[u8]) {
     d.grid_iou += if union > 0.0 { inter / union } else { 0.0 };
 }
 
+/// FACADE_GROW_DIAG=1: how the user's window boxes grow on the first map (`facade::grow`),
+/// against the bounding box of the true window component under each box's centre: boxes,
+/// dropped, summed IoU, grown boxes inside / around their window's box.
+fn grow_diag(
+    img: &image::RgbImage,
+    training: &Training,
+    truth: &[u8],
+    w: usize,
+    h: usize,
+    acc: &mut [f64; 5],
+) {
+    let Some(g) = repeat_params().grow else {
+        return;
+    };
+    let Ok(ll) = facade::classify::classify(img, training, &classify_params()) else {
+        return;
+    };
+    let Some(prob) = facade::grow::window_probability(&ll) else {
+        return;
+    };
+    let Ok(mut boxes) = training.boxes(w, h) else {
+        return;
+    };
+    let Some(wins) = boxes.remove(&Class::Window) else {
+        return;
+    };
+    let comps =
+        raster::components::components_where(w, h, raster::components::Connectivity::Eight, |i| {
+            truth[i] == Class::Window as u8
+        });
+    let grey = facade::grow::brightness(img);
+    for (b, grown) in wins
+        .iter()
+        .zip(facade::grow::grow_windows(&prob, w, h, &wins, &g))
+    {
+        let grown = grown.map(|b| facade::grow::snap_to_edges(&grey, w, h, b, g.snap));
+        acc[0] += 1.0;
+        let (cx, cy) = ((b[0] + b[2]) / 2, (b[1] + b[3]) / 2);
+        let l = comps.labels[cy * w + cx] as usize;
+        let Some(gb) = grown else {
+            acc[1] += 1.0;
+            continue;
+        };
+        if l == 0 {
+            continue;
+        }
+        let t = comps.bbox[l];
+        let t = [
+            t[0] as usize,
+            t[1] as usize,
+            t[2] as usize + 1,
+            t[3] as usize + 1,
+        ];
+        let ix = gb[2].min(t[2]).saturating_sub(gb[0].max(t[0]));
+        let iy = gb[3].min(t[3]).saturating_sub(gb[1].max(t[1]));
+        let inter = (ix * iy) as f64;
+        let area = |b: &[usize; 4]| ((b[2] - b[0]) * (b[3] - b[1])) as f64;
+        acc[2] += inter / (area(&gb) + area(&t) - inter);
+        acc[3] += (inter == area(&gb)) as u8 as f64;
+        acc[4] += (inter == area(&t)) as u8 as f64;
+    }
+}
+
 fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
     let mut s = Sums::default();
     let use_oracle = env_str("FACADE_MAP", "model") == "oracle";
@@ -420,6 +498,9 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         let Some(training) = user(&truth, w, h) else {
             continue;
         };
+        if env_str("FACADE_GROW_DIAG", "0") == "1" {
+            grow_diag(&img, &training, &truth, w, h, &mut s.grow);
+        }
         let t = Instant::now();
         let (ll, model) = if use_oracle {
             let ll = oracle(&truth, w, h, i as u64 + 1);
@@ -522,6 +603,17 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
             s.good as f64 / s.proposals.max(1) as f64,
             s.good as f64 / s.true_windows.max(1) as f64,
             s.true_windows
+        );
+    }
+    if s.grow[0] > 0.0 {
+        let g = &s.grow;
+        eprintln!(
+            "{name}: window boxes grown {} of {}; mean IoU with their window's box {:.3}; inside it {}, around it {}",
+            g[0] - g[1],
+            g[0],
+            g[2] / (g[0] - g[1]).max(1.0),
+            g[3],
+            g[4]
         );
     }
     if std::env::var("FACADE_DIAG").is_ok() {

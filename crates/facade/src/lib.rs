@@ -58,6 +58,7 @@ pub mod error;
 pub mod eval;
 pub mod fixes;
 pub mod gothic;
+pub mod grow;
 pub mod model;
 pub mod pipeline;
 pub mod rectify;

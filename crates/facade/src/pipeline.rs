@@ -4,9 +4,10 @@
 
 use image::RgbImage;
 
-use crate::classify::{ClassifyParams, LogLikelihoods, Training, classify};
+use crate::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
 use crate::error::Result;
 use crate::fixes::FacadeFixes;
+use crate::grow::{GrowParams, brightness, grow_windows, snap_to_edges, window_probability};
 use crate::model::FacadeModel;
 use crate::repeat::{RepeatParams, Repeats, evidence, find_repeats};
 use crate::search::{SearchParams, parse_with};
@@ -46,6 +47,11 @@ pub fn parse_photo_with(
 /// The first two steps of [`parse_photo`]: the class log-likelihoods with the repeats' window
 /// evidence added (what the search reads, and what `castellan serve` shows live), and the
 /// repeats when the step ran.
+///
+/// When the user drew no whole window and `rp.grow` is set, the small window boxes are grown
+/// into whole windows on a first map ([`grow_windows`]); those that stay window-sized replace
+/// their boxes as whole windows, and the classifier runs again with them (their ring of wall
+/// and their repeats, as if the user had outlined them).
 pub fn classify_with_repeats(
     img: &RgbImage,
     training: &Training,
@@ -53,6 +59,14 @@ pub fn classify_with_repeats(
     rp: &RepeatParams,
 ) -> Result<(LogLikelihoods, Option<Repeats>)> {
     let mut ll = classify(img, training, cp)?;
+    let grown = match rp.grow {
+        Some(g) if training.whole_windows.is_empty() => grown_training(img, training, &ll, &g),
+        _ => None,
+    };
+    if let Some(t) = &grown {
+        ll = classify(img, t, cp)?;
+    }
+    let training = grown.as_ref().unwrap_or(training);
     let repeats = whole_windows(img, training)
         .filter(|_| rp.evidence > 0.0)
         .map(|wins| {
@@ -61,6 +75,46 @@ pub fn classify_with_repeats(
             r
         });
     Ok((ll, repeats))
+}
+
+/// `training` with each window box that grows into a window on `ll` replaced by the grown box
+/// as a whole window; `None` when none does.
+fn grown_training(
+    img: &RgbImage,
+    training: &Training,
+    ll: &LogLikelihoods,
+    g: &GrowParams,
+) -> Option<Training> {
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let drawn = training.classes.get(&Class::Window)?;
+    let clipped = training.boxes(w, h).ok()?.remove(&Class::Window)?;
+    let prob = window_probability(ll)?;
+    let grey = brightness(img);
+    let grown: Vec<Option<_>> = grow_windows(&prob, w, h, &clipped, g)
+        .into_iter()
+        .map(|b| b.map(|b| snap_to_edges(&grey, w, h, b, g.snap)))
+        .collect();
+    if grown.iter().all(Option::is_none) {
+        return None;
+    }
+    let mut t = training.clone();
+    let kept: Vec<[f64; 4]> = drawn
+        .iter()
+        .zip(&grown)
+        .filter(|(_, g)| g.is_none())
+        .map(|(b, _)| *b)
+        .collect();
+    if kept.is_empty() {
+        t.classes.remove(&Class::Window);
+    } else {
+        t.classes.insert(Class::Window, kept);
+    }
+    t.whole_windows = grown
+        .into_iter()
+        .flatten()
+        .map(|b| b.map(|v| v as f64))
+        .collect();
+    Some(t)
 }
 
 /// The windows the user outlined whole, if any.

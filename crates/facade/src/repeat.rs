@@ -14,6 +14,7 @@
 use image::RgbImage;
 
 use crate::classify::{Class, LogLikelihoods};
+use crate::grow::GrowParams;
 
 /// Settings of [`find_repeats`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +35,10 @@ pub struct RepeatParams {
     /// [`evidence`]'s weight in [`crate::parse_photo`]: nats added to the window class's
     /// ln p inside every proposal before the search. 0: the repeat step is skipped.
     pub evidence: f64,
+    /// When the user drew no whole window: grow the small window boxes into whole windows on
+    /// a first map ([`crate::grow`]), classify again with them as whole windows and take them
+    /// as the templates. `None`: small boxes stay as drawn (the text's user).
+    pub grow: Option<GrowParams>,
 }
 
 impl Default for RepeatParams {
@@ -45,6 +50,7 @@ impl Default for RepeatParams {
             max_proposals: 200,
             context: 0.15,
             evidence: REPEAT_EVIDENCE,
+            grow: Some(GrowParams::default()),
         }
     }
 }

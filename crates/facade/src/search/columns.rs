@@ -224,19 +224,21 @@ pub(crate) fn fit_columns_with(
             None => searched_layout(&search_vertical_kinds(profiles, &y_cands, blind), fh, blind),
         }
     };
-    // Start as the text does: rows whose sum over the whole width is above the median row's
-    // (at the median too when that leaves none).
+    // Departure 4 (session 17): start from the rows whose sum over the whole width is above
+    // the mean row's (at the mean too when that leaves none). The text's start (`joint.rs`)
+    // takes the median: on a crisp map whose window rows outnumber the wall rows, the window
+    // rows (Σ ≈ 0 where windows fill half the width) sit at the median, and one row of sky at
+    // the façade's top edge was the whole start — the search then found no window at all.
+    // The mean lies between the two kinds of row.
     let all = row_profile(&[(0, fw)]);
-    let mut sorted = all.clone();
-    sorted.sort_by(|a, b| a.total_cmp(b));
-    let median = sorted.get(fh / 2).copied().unwrap_or(0.0);
+    let mean = all.iter().sum::<f64>() / fh.max(1) as f64;
     let mut start: Vec<(usize, usize)> = (0..fh)
-        .filter(|&y| all[y] > median)
+        .filter(|&y| all[y] > mean)
         .map(|y| (y, y + 1))
         .collect();
     if start.is_empty() {
         start = (0..fh)
-            .filter(|&y| all[y] >= median)
+            .filter(|&y| all[y] >= mean)
             .map(|y| (y, y + 1))
             .collect();
     }
@@ -393,5 +395,49 @@ mod tests {
         assert_eq!(best_intervals(&p, 1, 1, 4.0), vec![(1, 5)]);
         assert!(best_intervals(&[-1.0, -2.0], 1, 1, 0.0).is_empty());
         assert!(best_intervals(&[], 1, 1, 0.0).is_empty());
+    }
+
+    /// The CLI tests' façade as a crisp map: 120 × 76, a top row of +1 (sky at the façade's
+    /// edge), two floors of three 20 × 20 windows (+1) on wall (−1). Window rows sum to 0 and
+    /// outnumber the wall rows; the text's median start was that one top row and found no
+    /// window. From the mean, all six are found.
+    #[test]
+    fn a_crisp_map_whose_window_rows_outnumber_the_wall_rows_gives_its_windows() {
+        let (w, h) = (120usize, 76usize);
+        let win = |x: usize, y: usize| {
+            (y == 0)
+                || ((11..31).contains(&y) || (46..66).contains(&y))
+                    && (0..3).any(|k| (12 + 38 * k..32 + 38 * k).contains(&x))
+        };
+        let map: Vec<f64> = (0..w * h)
+            .map(|i| if win(i % w, i / w) { 1.0 } else { -1.0 })
+            .collect();
+        let img = image::RgbImage::from_fn(w as u32, h as u32, |x, y| {
+            if win(x as usize, y as usize) {
+                image::Rgb([35, 45, 65])
+            } else {
+                image::Rgb([185, 135, 95])
+            }
+        });
+        let f = fit_columns(
+            [0, 0, w, h],
+            &Integral::new(&map, w, h),
+            &Gradients::new(&img),
+            &SearchParams::default(),
+        );
+        let mut windows: Vec<[f64; 4]> = f
+            .floors
+            .iter()
+            .flat_map(|fl| fl.windows.iter().copied())
+            .filter(|b| b[3] - b[1] > 1.0)
+            .collect();
+        windows.sort_by(|a, b| (a[1], a[0]).partial_cmp(&(b[1], b[0])).unwrap());
+        let expect: Vec<[f64; 4]> = [11.0, 46.0]
+            .iter()
+            .flat_map(|&y| {
+                (0..3).map(move |k| [12.0 + 38.0 * k as f64, y, 32.0 + 38.0 * k as f64, y + 20.0])
+            })
+            .collect();
+        assert_eq!(windows, expect);
     }
 }

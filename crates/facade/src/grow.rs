@@ -1,0 +1,269 @@
+//! The user's small window boxes grown into whole windows (issue 21; not in the dissertation).
+//! A user who draws a few small boxes inside windows (§3.1.2) gives the classifier glass only;
+//! a user who outlines whole windows gives it the window's extent, the ring of wall around it
+//! and a template for its repeats, and reads the façade far better (docs/facade.md). So after
+//! a first classification each small window box is grown, one pixel row or column at a time,
+//! while the strip just beyond a side is mostly window on that map; a box that stays window-sized
+//! is then treated as a whole window. Pure: the map and boxes in, boxes out.
+
+use crate::classify::{Class, LogLikelihoods, PixelBox};
+
+/// Settings of [`grow_windows`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GrowParams {
+    /// A side moves out while the mean window probability of the strip just beyond it is at
+    /// least this.
+    pub threshold: f64,
+    /// A grown box wider than this fraction of the image's width, or taller than this fraction
+    /// of its height, is no window (the map leaked into a wall or a shop front): dropped.
+    pub max_frac: f64,
+    /// A grown box whose sides are not both at least this many times the drawn box's is
+    /// dropped: the map stopped at the box, which then is no evidence of the window's extent.
+    pub min_growth: f64,
+    /// Each side of a grown box then moves to the strongest image edge along it within this
+    /// fraction of the box's size (a window's frame is where the photo's brightness jumps; the
+    /// map's edge is blurred). 0: no snapping.
+    pub snap: f64,
+}
+
+impl Default for GrowParams {
+    fn default() -> Self {
+        GrowParams {
+            threshold: 0.6,
+            max_frac: 0.3,
+            min_growth: 1.0,
+            snap: 0.15,
+        }
+    }
+}
+
+/// The window class's probability at every pixel: the soft-max of the classes' ln p (ln P for
+/// the text's mixtures, equal priors). `None` without a window map.
+pub fn window_probability(ll: &LogLikelihoods) -> Option<Vec<f32>> {
+    let win = ll.get(Class::Window)?;
+    let others: Vec<&[f32]> = Class::ALL
+        .iter()
+        .filter(|&&c| c != Class::Window)
+        .filter_map(|&c| ll.get(c))
+        .collect();
+    Some(
+        (0..win.len())
+            .map(|i| {
+                let denom: f32 = others.iter().map(|m| (m[i] - win[i]).exp()).sum();
+                1.0 / (1.0 + denom)
+            })
+            .collect(),
+    )
+}
+
+/// Each of `boxes` grown on the window probability `prob` (`w` × `h`, row-major): every side
+/// moves out by one pixel while the strip just beyond it, as long as the box's current side,
+/// has mean probability ≥ `p.threshold`, until no side moves. `None` for a box that grew past
+/// `p.max_frac` of the image or not by `p.min_growth` in both directions.
+pub fn grow_windows(
+    prob: &[f32],
+    w: usize,
+    h: usize,
+    boxes: &[PixelBox],
+    p: &GrowParams,
+) -> Vec<Option<PixelBox>> {
+    let sat = SummedArea::new(prob, w, h);
+    let (max_w, max_h) = (
+        (w as f64 * p.max_frac).ceil() as usize,
+        (h as f64 * p.max_frac).ceil() as usize,
+    );
+    boxes
+        .iter()
+        .map(|&b0| {
+            let mut b = b0;
+            loop {
+                let mut moved = false;
+                let strips = [
+                    (b[0] > 0).then(|| [b[0] - 1, b[1], b[0], b[3]]),
+                    (b[1] > 0).then(|| [b[0], b[1] - 1, b[2], b[1]]),
+                    (b[2] < w).then(|| [b[2], b[1], b[2] + 1, b[3]]),
+                    (b[3] < h).then(|| [b[0], b[3], b[2], b[3] + 1]),
+                ];
+                for (side, strip) in strips.into_iter().enumerate() {
+                    let Some(s) = strip else { continue };
+                    if sat.mean(&s) >= p.threshold {
+                        match side {
+                            0 => b[0] -= 1,
+                            1 => b[1] -= 1,
+                            2 => b[2] += 1,
+                            _ => b[3] += 1,
+                        }
+                        moved = true;
+                    }
+                }
+                if b[2] - b[0] > max_w || b[3] - b[1] > max_h {
+                    return None;
+                }
+                if !moved {
+                    break;
+                }
+            }
+            let grew = |a: usize, a0: usize| a as f64 >= p.min_growth * a0 as f64;
+            (grew(b[2] - b[0], b0[2] - b0[0]) && grew(b[3] - b[1], b0[3] - b0[1])).then_some(b)
+        })
+        .collect()
+}
+
+/// The photo's brightness (mean of R, G, B, 0–1), row-major: what [`snap_to_edges`] reads.
+pub fn brightness(img: &image::RgbImage) -> Vec<f32> {
+    img.pixels()
+        .map(|p| (p.0[0] as f32 + p.0[1] as f32 + p.0[2] as f32) / 765.0)
+        .collect()
+}
+
+/// `b` with each side moved to the strongest brightness step along it (mean absolute
+/// difference across the side, over the box's current span) within `frac` of the box's size
+/// of where it is; the box keeps at least 2 pixels a side. `grey` is `w` × `h`, row-major.
+pub fn snap_to_edges(grey: &[f32], w: usize, h: usize, b: PixelBox, frac: f64) -> PixelBox {
+    if frac <= 0.0 {
+        return b;
+    }
+    let mut b = b;
+    // A step at column x: between pixels x − 1 and x, over rows y0..y1.
+    let step_x = |x: usize, y0: usize, y1: usize| {
+        (y0..y1)
+            .map(|y| (grey[y * w + x] - grey[y * w + x - 1]).abs())
+            .sum::<f32>()
+            / (y1 - y0) as f32
+    };
+    let step_y = |y: usize, x0: usize, x1: usize| {
+        (x0..x1)
+            .map(|x| (grey[y * w + x] - grey[(y - 1) * w + x]).abs())
+            .sum::<f32>()
+            / (x1 - x0) as f32
+    };
+    let best = |from: usize, to: usize, at: usize, score: &dyn Fn(usize) -> f32| {
+        (from..=to)
+            .map(|p| (p, score(p)))
+            .fold(
+                (at, f32::NEG_INFINITY),
+                |a, c| if c.1 > a.1 { c } else { a },
+            )
+            .0
+    };
+    let rx = ((b[2] - b[0]) as f64 * frac).round() as usize;
+    let ry = ((b[3] - b[1]) as f64 * frac).round() as usize;
+    let (y0, y1) = (b[1], b[3]);
+    b[0] = best(
+        b[0].saturating_sub(rx).max(1),
+        (b[0] + rx).min(b[2] - 2),
+        b[0],
+        &|x| step_x(x, y0, y1),
+    );
+    b[2] = best(
+        (b[2] - rx).max(b[0] + 2),
+        (b[2] + rx).min(w - 1),
+        b[2],
+        &|x| step_x(x, y0, y1),
+    );
+    let (x0, x1) = (b[0], b[2]);
+    b[1] = best(
+        b[1].saturating_sub(ry).max(1),
+        (b[1] + ry).min(b[3] - 2),
+        b[1],
+        &|y| step_y(y, x0, x1),
+    );
+    b[3] = best(
+        (b[3] - ry).max(b[1] + 2),
+        (b[3] + ry).min(h - 1),
+        b[3],
+        &|y| step_y(y, x0, x1),
+    );
+    b
+}
+
+/// A summed-area table of a probability map, for the mean over any box in four reads.
+struct SummedArea {
+    w: usize,
+    s: Vec<f64>,
+}
+
+impl SummedArea {
+    fn new(v: &[f32], w: usize, h: usize) -> SummedArea {
+        let mut s = vec![0f64; (w + 1) * (h + 1)];
+        for y in 0..h {
+            let mut row = 0f64;
+            for x in 0..w {
+                row += v[y * w + x] as f64;
+                s[(y + 1) * (w + 1) + x + 1] = s[y * (w + 1) + x + 1] + row;
+            }
+        }
+        SummedArea { w, s }
+    }
+
+    /// Mean over [x0, y0, x1, y1) (exclusive ends, non-empty).
+    fn mean(&self, b: &PixelBox) -> f64 {
+        let at = |x: usize, y: usize| self.s[y * (self.w + 1) + x];
+        let sum = at(b[2], b[3]) - at(b[0], b[3]) - at(b[2], b[1]) + at(b[0], b[1]);
+        sum / ((b[2] - b[0]) * (b[3] - b[1])) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 40 × 30 map: window probability 0.9 on the window [10, 5, 22, 25), 0.1 elsewhere.
+    fn map() -> (Vec<f32>, usize, usize) {
+        let (w, h) = (40, 30);
+        let v = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if (10..22).contains(&x) && (5..25).contains(&y) {
+                    0.9
+                } else {
+                    0.1
+                }
+            })
+            .collect();
+        (v, w, h)
+    }
+
+    #[test]
+    fn a_small_box_grows_to_its_window_exactly() {
+        let (v, w, h) = map();
+        let p = GrowParams {
+            max_frac: 0.8,
+            ..Default::default()
+        };
+        let got = grow_windows(&v, w, h, &[[14, 12, 17, 15], [12, 6, 13, 7]], &p);
+        assert_eq!(got, vec![Some([10, 5, 22, 25]), Some([10, 5, 22, 25])]);
+    }
+
+    #[test]
+    fn a_box_that_outgrows_the_limit_or_does_not_grow_is_dropped() {
+        let (v, w, h) = map();
+        // The window is 20 of 30 rows tall: over a 0.5 limit.
+        let tall = GrowParams {
+            max_frac: 0.5,
+            ..Default::default()
+        };
+        assert_eq!(
+            grow_windows(&v, w, h, &[[14, 12, 17, 15]], &tall),
+            vec![None]
+        );
+        // A box on the wall does not grow; with growth required it is dropped.
+        let p = GrowParams {
+            max_frac: 0.8,
+            min_growth: 1.5,
+            ..Default::default()
+        };
+        assert_eq!(grow_windows(&v, w, h, &[[30, 2, 33, 5]], &p), vec![None]);
+    }
+
+    #[test]
+    fn window_probability_is_the_soft_max() {
+        let ll = LogLikelihoods {
+            width: 2,
+            height: 1,
+            maps: [None, Some(vec![0.0, 0.0]), Some(vec![0.0, (3f32).ln()])],
+        };
+        let p = window_probability(&ll).unwrap();
+        assert!((p[0] - 0.5).abs() < 1e-6 && (p[1] - 0.75).abs() < 1e-6);
+    }
+}
