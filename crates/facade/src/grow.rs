@@ -7,6 +7,7 @@
 //! is then treated as a whole window. Pure: the map and boxes in, boxes out.
 
 use crate::classify::{Class, LogLikelihoods, PixelBox};
+use crate::search::Integral;
 
 /// Settings of [`grow_windows`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,7 +68,10 @@ pub fn grow_windows(
     boxes: &[PixelBox],
     p: &GrowParams,
 ) -> Vec<Option<PixelBox>> {
-    let sat = SummedArea::new(prob, w, h);
+    let prob: Vec<f64> = prob.iter().map(|&v| v as f64).collect();
+    let sat = Integral::new(&prob, w, h);
+    let mean =
+        |b: &PixelBox| sat.sum(b[0], b[1], b[2], b[3]) / ((b[2] - b[0]) * (b[3] - b[1])) as f64;
     let (max_w, max_h) = (
         (w as f64 * p.max_frac).ceil() as usize,
         (h as f64 * p.max_frac).ceil() as usize,
@@ -86,7 +90,7 @@ pub fn grow_windows(
                 ];
                 for (side, strip) in strips.into_iter().enumerate() {
                     let Some(s) = strip else { continue };
-                    if sat.mean(&s) >= p.threshold {
+                    if mean(&s) >= p.threshold {
                         match side {
                             0 => b[0] -= 1,
                             1 => b[1] -= 1,
@@ -137,71 +141,31 @@ pub fn snap_to_edges(grey: &[f32], w: usize, h: usize, b: PixelBox, frac: f64) -
             .sum::<f32>()
             / (x1 - x0) as f32
     };
+    // The strongest step in from..=to; a side stays where it is unless a step is stronger.
     let best = |from: usize, to: usize, at: usize, score: &dyn Fn(usize) -> f32| {
+        let here = if (from..=to).contains(&at) {
+            score(at)
+        } else {
+            f32::NEG_INFINITY
+        };
         (from..=to)
             .map(|p| (p, score(p)))
-            .fold(
-                (at, f32::NEG_INFINITY),
-                |a, c| if c.1 > a.1 { c } else { a },
-            )
+            .fold((at, here), |a, c| if c.1 > a.1 { c } else { a })
             .0
     };
     let rx = ((b[2] - b[0]) as f64 * frac).round() as usize;
     let ry = ((b[3] - b[1]) as f64 * frac).round() as usize;
+    // Both sides along one axis, each within r of where it is, at least 2 px apart.
+    let snap_axis = |lo: usize, hi: usize, r: usize, limit: usize, score: &dyn Fn(usize) -> f32| {
+        let lo = best(lo.saturating_sub(r).max(1), (lo + r).min(hi - 2), lo, score);
+        let hi = best((hi - r).max(lo + 2), (hi + r).min(limit - 1), hi, score);
+        (lo, hi)
+    };
     let (y0, y1) = (b[1], b[3]);
-    b[0] = best(
-        b[0].saturating_sub(rx).max(1),
-        (b[0] + rx).min(b[2] - 2),
-        b[0],
-        &|x| step_x(x, y0, y1),
-    );
-    b[2] = best(
-        (b[2] - rx).max(b[0] + 2),
-        (b[2] + rx).min(w - 1),
-        b[2],
-        &|x| step_x(x, y0, y1),
-    );
+    (b[0], b[2]) = snap_axis(b[0], b[2], rx, w, &|x| step_x(x, y0, y1));
     let (x0, x1) = (b[0], b[2]);
-    b[1] = best(
-        b[1].saturating_sub(ry).max(1),
-        (b[1] + ry).min(b[3] - 2),
-        b[1],
-        &|y| step_y(y, x0, x1),
-    );
-    b[3] = best(
-        (b[3] - ry).max(b[1] + 2),
-        (b[3] + ry).min(h - 1),
-        b[3],
-        &|y| step_y(y, x0, x1),
-    );
+    (b[1], b[3]) = snap_axis(b[1], b[3], ry, h, &|y| step_y(y, x0, x1));
     b
-}
-
-/// A summed-area table of a probability map, for the mean over any box in four reads.
-struct SummedArea {
-    w: usize,
-    s: Vec<f64>,
-}
-
-impl SummedArea {
-    fn new(v: &[f32], w: usize, h: usize) -> SummedArea {
-        let mut s = vec![0f64; (w + 1) * (h + 1)];
-        for y in 0..h {
-            let mut row = 0f64;
-            for x in 0..w {
-                row += v[y * w + x] as f64;
-                s[(y + 1) * (w + 1) + x + 1] = s[y * (w + 1) + x + 1] + row;
-            }
-        }
-        SummedArea { w, s }
-    }
-
-    /// Mean over [x0, y0, x1, y1) (exclusive ends, non-empty).
-    fn mean(&self, b: &PixelBox) -> f64 {
-        let at = |x: usize, y: usize| self.s[y * (self.w + 1) + x];
-        let sum = at(b[2], b[3]) - at(b[0], b[3]) - at(b[2], b[1]) + at(b[0], b[1]);
-        sum / ((b[2] - b[0]) * (b[3] - b[1])) as f64
-    }
 }
 
 #[cfg(test)]
@@ -254,6 +218,30 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(grow_windows(&v, w, h, &[[30, 2, 33, 5]], &p), vec![None]);
+    }
+
+    #[test]
+    fn sides_snap_to_the_window_frame_within_reach() {
+        // A dark window [10, 5, 22, 25) on a light 40 × 30 wall.
+        let (w, h) = (40, 30);
+        let grey: Vec<f32> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if (10..22).contains(&x) && (5..25).contains(&y) {
+                    0.2
+                } else {
+                    0.8
+                }
+            })
+            .collect();
+        // Each side 1 px off: found exactly within 0.2 of the box (2 px across, 3–4 px up
+        // and down).
+        let snap = |b: PixelBox, frac: f64| snap_to_edges(&grey, w, h, b, frac);
+        assert_eq!(snap([11, 6, 21, 24], 0.2), [10, 5, 22, 25]);
+        // 4 px off across is out of that reach: no stronger step, the side stays.
+        assert_eq!(snap([14, 6, 21, 24], 0.2)[0], 14);
+        // No snapping at 0.
+        assert_eq!(snap([11, 6, 21, 24], 0.0), [11, 6, 21, 24]);
     }
 
     #[test]
