@@ -439,9 +439,6 @@ fn grow_diag(
     let Ok(ll) = facade::classify::classify(img, training, &classify_params()) else {
         return;
     };
-    let Some(prob) = facade::grow::window_probability(&ll) else {
-        return;
-    };
     let Ok(mut boxes) = training.boxes(w, h) else {
         return;
     };
@@ -452,12 +449,10 @@ fn grow_diag(
         raster::components::components_where(w, h, raster::components::Connectivity::Eight, |i| {
             truth[i] == Class::Window as u8
         });
-    let grey = facade::grow::brightness(img);
-    for (b, grown) in wins
-        .iter()
-        .zip(facade::grow::grow_windows(&prob, w, h, &wins, &g))
-    {
-        let grown = grown.map(|b| facade::grow::snap_to_edges(&grey, w, h, b, g.snap));
+    let Some(grown) = facade::grow::grow_on(img, &ll, &wins, &g) else {
+        return;
+    };
+    for (b, grown) in wins.iter().zip(grown) {
         acc[0] += 1.0;
         let (cx, cy) = ((b[0] + b[2]) / 2, (b[1] + b[3]) / 2);
         let l = comps.labels[cy * w + cx] as usize;
@@ -469,19 +464,13 @@ fn grow_diag(
             continue;
         }
         let t = comps.bbox[l];
-        let t = [
-            t[0] as usize,
-            t[1] as usize,
-            t[2] as usize + 1,
-            t[3] as usize + 1,
-        ];
-        let ix = gb[2].min(t[2]).saturating_sub(gb[0].max(t[0]));
-        let iy = gb[3].min(t[3]).saturating_sub(gb[1].max(t[1]));
-        let inter = (ix * iy) as f64;
-        let area = |b: &[usize; 4]| ((b[2] - b[0]) * (b[3] - b[1])) as f64;
-        acc[2] += inter / (area(&gb) + area(&t) - inter);
-        acc[3] += (inter == area(&gb)) as u8 as f64;
-        acc[4] += (inter == area(&t)) as u8 as f64;
+        let t = [t[0], t[1], t[2] + 1, t[3] + 1].map(|v| v as usize);
+        acc[2] += box_iou(&gb.map(|v| v as f64), &t.map(|v| v as f64));
+        let within = |a: &[usize; 4], b: &[usize; 4]| {
+            a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3]
+        };
+        acc[3] += within(&gb, &t) as u8 as f64;
+        acc[4] += within(&t, &gb) as u8 as f64;
     }
 }
 

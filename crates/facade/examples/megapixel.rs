@@ -86,26 +86,24 @@ fn main() {
     // The default pipeline every command runs (`facade::parse_photo`: forest, the window boxes
     // grown into whole windows and classified again, their repeats, the search), and the same
     // with the boxes as drawn, best of 3 each.
-    for (name, grow) in [
+    let grown = facade::repeat::RepeatParams::default();
+    for (name, rp) in [
+        ("boxes grown (default)", grown),
         (
-            "boxes grown (default)",
-            facade::repeat::RepeatParams::default().grow,
+            "boxes as drawn",
+            facade::repeat::RepeatParams {
+                grow: None,
+                ..grown
+            },
         ),
-        ("boxes as drawn", None),
         (
             "boxes grown, no repeats",
-            facade::repeat::RepeatParams::default().grow,
+            facade::repeat::RepeatParams {
+                evidence: 0.0,
+                ..grown
+            },
         ),
     ] {
-        let rp = facade::repeat::RepeatParams {
-            grow,
-            evidence: if name.contains("no repeats") {
-                0.0
-            } else {
-                facade::repeat::REPEAT_EVIDENCE
-            },
-            ..Default::default()
-        };
         let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
         for _ in 0..3 {
             let (t, c) = (Instant::now(), cpu_seconds());

@@ -113,6 +113,26 @@ pub fn grow_windows(
         .collect()
 }
 
+/// Each of `boxes` grown on `ll`'s window probability ([`grow_windows`]) and its sides snapped
+/// to `img`'s brightness steps ([`snap_to_edges`]): the growth step as `facade::parse_photo`
+/// runs it. `None` without a window map.
+pub fn grow_on(
+    img: &image::RgbImage,
+    ll: &LogLikelihoods,
+    boxes: &[PixelBox],
+    p: &GrowParams,
+) -> Option<Vec<Option<PixelBox>>> {
+    let (w, h) = (ll.width, ll.height);
+    let prob = window_probability(ll)?;
+    let grey = brightness(img);
+    Some(
+        grow_windows(&prob, w, h, boxes, p)
+            .into_iter()
+            .map(|b| b.map(|b| snap_to_edges(&grey, w, h, b, p.snap)))
+            .collect(),
+    )
+}
+
 /// The photo's brightness (mean of R, G, B, 0–1), row-major: what [`snap_to_edges`] reads.
 pub fn brightness(img: &image::RgbImage) -> Vec<f32> {
     img.pixels()
@@ -172,20 +192,25 @@ pub fn snap_to_edges(grey: &[f32], w: usize, h: usize, b: PixelBox, frac: f64) -
 mod tests {
     use super::*;
 
-    /// A 40 × 30 map: window probability 0.9 on the window [10, 5, 22, 25), 0.1 elsewhere.
-    fn map() -> (Vec<f32>, usize, usize) {
+    /// A 40 × 30 picture: `inside` on the window [10, 5, 22, 25), `outside` elsewhere.
+    fn window_on_wall(inside: f32, outside: f32) -> (Vec<f32>, usize, usize) {
         let (w, h) = (40, 30);
         let v = (0..w * h)
             .map(|i| {
                 let (x, y) = (i % w, i / w);
                 if (10..22).contains(&x) && (5..25).contains(&y) {
-                    0.9
+                    inside
                 } else {
-                    0.1
+                    outside
                 }
             })
             .collect();
         (v, w, h)
+    }
+
+    /// The window probability map: 0.9 on the window, 0.1 elsewhere.
+    fn map() -> (Vec<f32>, usize, usize) {
+        window_on_wall(0.9, 0.1)
     }
 
     #[test]
@@ -223,17 +248,7 @@ mod tests {
     #[test]
     fn sides_snap_to_the_window_frame_within_reach() {
         // A dark window [10, 5, 22, 25) on a light 40 × 30 wall.
-        let (w, h) = (40, 30);
-        let grey: Vec<f32> = (0..w * h)
-            .map(|i| {
-                let (x, y) = (i % w, i / w);
-                if (10..22).contains(&x) && (5..25).contains(&y) {
-                    0.2
-                } else {
-                    0.8
-                }
-            })
-            .collect();
+        let (grey, w, h) = window_on_wall(0.2, 0.8);
         // Each side 1 px off: found exactly within 0.2 of the box (2 px across, 3–4 px up
         // and down).
         let snap = |b: PixelBox, frac: f64| snap_to_edges(&grey, w, h, b, frac);

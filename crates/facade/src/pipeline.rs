@@ -7,7 +7,7 @@ use image::RgbImage;
 use crate::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
 use crate::error::Result;
 use crate::fixes::FacadeFixes;
-use crate::grow::{GrowParams, brightness, grow_windows, snap_to_edges, window_probability};
+use crate::grow::{GrowParams, grow_on};
 use crate::model::FacadeModel;
 use crate::repeat::{RepeatParams, Repeats, evidence, find_repeats};
 use crate::search::{SearchParams, parse_with};
@@ -49,7 +49,7 @@ pub fn parse_photo_with(
 /// repeats when the step ran.
 ///
 /// When the user drew no whole window and `rp.grow` is set, the small window boxes are grown
-/// into whole windows on a first map ([`grow_windows`]); those that stay window-sized replace
+/// into whole windows on a first map ([`grow_on`]); those that stay window-sized replace
 /// their boxes as whole windows, and the classifier runs again with them (their ring of wall
 /// and their repeats, as if the user had outlined them).
 pub fn classify_with_repeats(
@@ -88,12 +88,7 @@ fn grown_training(
     let (w, h) = (img.width() as usize, img.height() as usize);
     let drawn = training.classes.get(&Class::Window)?;
     let clipped = training.boxes(w, h).ok()?.remove(&Class::Window)?;
-    let prob = window_probability(ll)?;
-    let grey = brightness(img);
-    let grown: Vec<Option<_>> = grow_windows(&prob, w, h, &clipped, g)
-        .into_iter()
-        .map(|b| b.map(|b| snap_to_edges(&grey, w, h, b, g.snap)))
-        .collect();
+    let grown = grow_on(img, ll, &clipped, g)?;
     if grown.iter().all(Option::is_none) {
         return None;
     }
