@@ -4,8 +4,10 @@
 //! and of the gallery (scripts/gallery.py's `PLANS`, with its scales and options),
 //! reconstructed plan-only through `pipeline::reconstruct`. Prints per plan the model
 //! footprint's IoU, precision and recall against the plan's built area, rooms and towers
-//! present, and the medians. The drawings are read from `../shared/data/castle_drawings_pd`;
-//! without it only Coucy is measured. Run: `cargo run --release -p integrate --example
+//! present, and the medians; then where the recall goes (built pixels left bare, by label)
+//! and where the precision goes (the model's pixels on unbuilt plan, by structure kind). The
+//! drawings are read from `../shared/data/castle_drawings_pd`; without it only Coucy is
+//! measured. Run: `cargo run --release -p integrate --example
 //! plan_model_agreement [-- --limit N] [--absent]`; `--absent` lists the rooms and
 //! towers the model leaves uncovered.
 
@@ -62,9 +64,13 @@ fn main() {
     );
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut rows = Vec::new();
+    // Where the precision goes: the model's pixels on unbuilt plan, by structure kind (the id
+    // without its number), over every plan but the demo.
+    let mut spilled: std::collections::BTreeMap<String, usize> = Default::default();
     for case in &cases {
         match measure(case) {
-            Ok((a, structures)) => {
+            Ok((a, ids)) => {
+                let structures = ids.len();
                 println!(
                     "| {} | {} | {:.3} | {:.3} | {:.3} | {} / {} | {} / {} | {} |",
                     case.name,
@@ -97,6 +103,11 @@ fn main() {
                     }
                 }
                 if case.sets != "demo" {
+                    for (id, k) in ids.iter().zip(&a.spilled_by_structure) {
+                        *spilled
+                            .entry(id.trim_end_matches(|c: char| c.is_ascii_digit()).into())
+                            .or_default() += k;
+                    }
                     rows.push(a);
                 }
             }
@@ -160,10 +171,20 @@ fn main() {
         })
         .collect();
     println!("built pixels left bare, by label: {}", by_label.join(", "));
+    let total: usize = spilled.values().sum();
+    let by_kind: Vec<String> = spilled
+        .iter()
+        .filter(|(_, k)| **k > 0)
+        .map(|(kind, k)| format!("{kind} {:.0} %", 100.0 * *k as f64 / total.max(1) as f64))
+        .collect();
+    println!(
+        "model pixels on unbuilt plan, by structure kind: {}",
+        by_kind.join(", ")
+    );
 }
 
-/// The agreement of a case's reconstruction and its number of structures.
-fn measure(case: &Case) -> Result<(integrate::agreement::Agreement, usize), String> {
+/// The agreement of a case's reconstruction and its structures' ids.
+fn measure(case: &Case) -> Result<(integrate::agreement::Agreement, Vec<String>), String> {
     let project = Project::from_toml(&case.project).map_err(|e| e.to_string())?;
     let r = pipeline::reconstruct(
         &project,
@@ -172,7 +193,10 @@ fn measure(case: &Case) -> Result<(integrate::agreement::Agreement, usize), Stri
         &|_| {},
     )
     .map_err(|e| e.to_string())?;
-    Ok((r.agreement, r.estimate.structures.len()))
+    Ok((
+        r.agreement,
+        r.estimate.structures.iter().map(|s| s.id.clone()).collect(),
+    ))
 }
 
 /// The development set's plans, then the gallery's that are not among them; a plan in both

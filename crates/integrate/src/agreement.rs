@@ -203,6 +203,9 @@ pub struct Agreement {
     /// The plan's built pixels the model leaves bare, by plan label (indexed as
     /// [`Label::ALL`]): where the recall is lost.
     pub missed_by_label: [usize; 11],
+    /// The model's pixels on the plan's unbuilt area (surroundings, courtyards), by the
+    /// structure that covers them (indexed as the view's `ids`): where the precision is lost.
+    pub spilled_by_structure: Vec<usize>,
     /// The plan's rooms (tower_room, great_hall, chapel, unknown_room): 4-connected regions of
     /// one room label, which are the rooms' faces as the label image holds them (a
     /// [`plan::PlanFace`] keeps its area, not its pixels).
@@ -323,9 +326,16 @@ pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[Stri
     let (w, h) = (view.width as usize, view.height as usize);
     let (mut plan_px, mut model_px, mut both) = (0, 0, 0);
     let mut missed_by_label = [0usize; 11];
+    let mut spilled_by_structure = vec![0usize; ids.len()];
     for (l, o) in labels.iter().zip(&view.owner) {
         let built = is_built(*l);
         let covered = *o != TopView::EMPTY;
+        if covered
+            && !built
+            && let Some(s) = spilled_by_structure.get_mut(*o as usize)
+        {
+            *s += 1;
+        }
         if built
             && !covered
             && let Some(m) = missed_by_label.get_mut(*l as usize)
@@ -388,6 +398,7 @@ pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[Stri
         model_pixels: model_px,
         overlap_pixels: both,
         missed_by_label,
+        spilled_by_structure,
         rooms,
         towers,
     }
@@ -522,6 +533,8 @@ mod tests {
         );
         assert_eq!(a.iou, 1.0 / 3.0);
         assert_eq!((a.precision, a.recall), (0.5, 0.5));
+        // The 50 pixels outside the square are the tower's spill.
+        assert_eq!(a.spilled_by_structure, vec![50]);
         // The room (7..=12) has columns 10..=12 covered: 18 of 36 pixels, exactly the bar.
         assert_eq!(a.rooms.len(), 1);
         assert_eq!(a.rooms[0].pixels, 36);

@@ -391,6 +391,7 @@ mod tests {
             model_pixels: (1000.0 * recall) as usize,
             overlap_pixels: (1000.0 * recall) as usize,
             missed_by_label: [0; 11],
+            spilled_by_structure: Vec::new(),
             rooms: vec![],
             towers: vec![],
         }
