@@ -4,7 +4,9 @@
 
 use image::RgbImage;
 
-use crate::classify::{Class, ClassifyParams, LogLikelihoods, Training, classify};
+use crate::classify::{
+    Class, ClassifyParams, LogLikelihoods, Training, classify_prepared, prepare,
+};
 use crate::error::Result;
 use crate::fixes::FacadeFixes;
 use crate::grow::{GrowParams, grow_on};
@@ -58,13 +60,16 @@ pub fn classify_with_repeats(
     cp: &ClassifyParams,
     rp: &RepeatParams,
 ) -> Result<(LogLikelihoods, Option<Repeats>)> {
-    let mut ll = classify(img, training, cp)?;
-    let grown = match rp.grow {
-        Some(g) if training.whole_windows.is_empty() => grown_training(img, training, &ll, &g),
-        _ => None,
+    let grow = rp.grow.filter(|_| training.whole_windows.is_empty());
+    // The second classification trains on the same photo: its features are made once.
+    let prepared = match grow {
+        Some(_) => prepare(img, cp)?,
+        None => None,
     };
+    let mut ll = classify_prepared(img, prepared.as_ref(), training, cp)?;
+    let grown = grow.and_then(|g| grown_training(img, training, &ll, &g));
     if let Some(t) = &grown {
-        ll = classify(img, t, cp)?;
+        ll = classify_prepared(img, prepared.as_ref(), t, cp)?;
     }
     let training = grown.as_ref().unwrap_or(training);
     let repeats = whole_windows(img, training)

@@ -30,6 +30,8 @@ pub enum PixelClassError {
     },
     #[error("{what}: {why}")]
     BadInput { what: String, why: String },
+    #[error("the prepared features were made with another filter bank or pixel limit")]
+    PreparedOtherwise,
 }
 
 pub type Result<T> = std::result::Result<T, PixelClassError>;

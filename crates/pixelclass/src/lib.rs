@@ -13,7 +13,8 @@
 //! - [`autocontext`]: the optional second stage ([`AutoContext`]): a forest on the bank plus
 //!   the first stage's maps smoothed and averaged over rows and columns.
 //! - [`resample`]: the working resolution (area shrink before, bilinear enlarge after).
-//! - [`classify`] runs it all: channels + labelled [`Sample`]s → probabilities.
+//! - [`classify`] runs it all: channels + labelled [`Sample`]s → probabilities; [`prepare`]
+//!   and [`classify_prepared`] split it, so that one image's features serve several trainings.
 //!
 //! ```
 //! use image::{Rgb, RgbImage};
@@ -101,6 +102,25 @@ pub fn classify(
     classes: usize,
     p: &Params,
 ) -> Result<Probabilities> {
+    classify_prepared(&prepare(ch, p)?, samples, classes, p)
+}
+
+/// An image's filter-bank features at the working resolution: what every training on that
+/// image shares ([`classify_prepared`]).
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    /// The input's size.
+    pub width: usize,
+    pub height: usize,
+    /// The features, at [`working_size`].
+    pub features: Features,
+    /// The bank and the pixel limit they were computed with.
+    bank: FilterBank,
+    max_pixels: usize,
+}
+
+/// The features of `ch` under `p.bank`, at `p.max_pixels` at most.
+pub fn prepare(ch: &Channels, p: &Params) -> Result<Prepared> {
     let (w, h) = (ch.width, ch.height);
     if w < 2 || h < 2 {
         return Err(PixelClassError::ImageTooSmall {
@@ -109,6 +129,33 @@ pub fn classify(
             need: "classification needs at least 2x2 pixels".into(),
         });
     }
+    let (ws, hs) = working_size(w, h, p.max_pixels);
+    let features = if (ws, hs) == (w, h) {
+        features::compute(ch, &p.bank)
+    } else {
+        features::compute(&resample::shrink(ch, ws, hs), &p.bank)
+    };
+    Ok(Prepared {
+        width: w,
+        height: h,
+        features,
+        bank: p.bank.clone(),
+        max_pixels: p.max_pixels,
+    })
+}
+
+/// [`classify`] on features made by [`prepare`]; `p.bank` and `p.max_pixels` must be the ones
+/// they were made with.
+pub fn classify_prepared(
+    prep: &Prepared,
+    samples: &[Sample],
+    classes: usize,
+    p: &Params,
+) -> Result<Probabilities> {
+    if prep.bank != p.bank || prep.max_pixels != p.max_pixels {
+        return Err(PixelClassError::PreparedOtherwise);
+    }
+    let (w, h) = (prep.width, prep.height);
     if classes < 2 {
         return Err(PixelClassError::TooFewClasses { classes });
     }
@@ -130,15 +177,8 @@ pub fn classify(
             });
         }
     }
-    let (ws, hs) = working_size(w, h, p.max_pixels);
-    let shrunk;
-    let work = if (ws, hs) == (w, h) {
-        ch
-    } else {
-        shrunk = resample::shrink(ch, ws, hs);
-        &shrunk
-    };
-    let f = features::compute(work, &p.bank);
+    let f = &prep.features;
+    let (ws, hs) = (f.width, f.height);
     let dim = f.dim();
     let mut x = Vec::with_capacity(samples.len() * dim);
     let mut labels = Vec::with_capacity(samples.len());
@@ -153,9 +193,18 @@ pub fn classify(
         pos.push((sx, sy));
     }
     let forest = Forest::train(&x, dim, &labels, classes, &p.forest)?;
-    let mut prob = forest.predict(&f)?;
+    let mut prob = forest.predict(f)?;
     if let Some(ac) = &p.autocontext {
-        prob = autocontext::stage_two(f, &prob, &idx, &pos, &labels, classes, &p.forest, ac)?;
+        prob = autocontext::stage_two(
+            f.clone(),
+            &prob,
+            &idx,
+            &pos,
+            &labels,
+            classes,
+            &p.forest,
+            ac,
+        )?;
     }
     Ok(if (ws, hs) == (w, h) {
         prob

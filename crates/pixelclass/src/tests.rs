@@ -178,6 +178,28 @@ fn errors_name_the_sample_or_class() {
     assert!(e.to_string().contains("1x5 is too small"), "{e}");
 }
 
+#[test]
+fn prepared_features_give_the_same_maps_for_every_training() {
+    let (img, s) = scene();
+    let ch = Channels::from_rgb(&img);
+    let p = Params::default();
+    let prep = prepare(&ch, &p).unwrap();
+    // Two trainings on one preparation, each bit-identical to classify's own.
+    let fewer: Vec<Sample> = s.iter().copied().step_by(2).collect();
+    for samples in [&s, &fewer] {
+        let a = classify(&ch, samples, 3, &p).unwrap();
+        let b = classify_prepared(&prep, samples, 3, &p).unwrap();
+        assert_eq!(a.data, b.data);
+    }
+    // Features made under another bank are refused.
+    let other = Params {
+        max_pixels: 1000,
+        ..Params::default()
+    };
+    let e = classify_prepared(&prep, &s, 3, &other).unwrap_err();
+    assert!(e.to_string().contains("another filter bank"), "{e}");
+}
+
 /// Two rows of identical dark squares on a grey wall; what tells them apart is a coloured
 /// strip at the far left of each row (red: class 1's row, green: class 2's), over 200 px from
 /// the squares, beyond every filter's reach. Samples: the strips, two squares per row, wall.

@@ -10,7 +10,7 @@
 //! this file only trains and applies the forest.
 
 use image::RgbImage;
-use pixelclass::{Channels, Sample};
+use pixelclass::{Channels, Prepared, Sample};
 
 use crate::error::{FacadeError, Result};
 
@@ -19,10 +19,18 @@ use crate::error::{FacadeError, Result};
 /// nats keeps one pixel's say bounded, about as much as the clipped GMM ratios had.
 pub const P_FLOOR: f32 = 1e-3;
 
+/// The photo's features under `params` ([`pixelclass::prepare`]), for several trainings.
+pub fn prepare(img: &RgbImage, params: &pixelclass::Params) -> Result<Prepared> {
+    pixelclass::prepare(&Channels::from_rgb(img), params)
+        .map_err(|e| FacadeError::BadTraining(e.to_string()))
+}
+
 /// Per-pixel ln p of each of `classes` classes (indices of the samples' `class`), row-major,
-/// from a forest trained on `samples`; `params.forest.seed` is replaced by `seed`.
+/// from a forest trained on `samples`; `params.forest.seed` is replaced by `seed`. `prepared`:
+/// the photo's features from [`prepare`] with the same `params`, or `None` to compute them.
 pub fn log_maps(
     img: &RgbImage,
+    prepared: Option<&Prepared>,
     samples: &[Sample],
     classes: usize,
     params: &pixelclass::Params,
@@ -30,7 +38,15 @@ pub fn log_maps(
 ) -> Result<Vec<Vec<f32>>> {
     let mut params = params.clone();
     params.forest.seed = seed;
-    let prob = pixelclass::classify(&Channels::from_rgb(img), samples, classes, &params)
+    let own;
+    let prepared = match prepared {
+        Some(p) => p,
+        None => {
+            own = prepare(img, &params)?;
+            &own
+        }
+    };
+    let prob = pixelclass::classify_prepared(prepared, samples, classes, &params)
         .map_err(|e| FacadeError::BadTraining(e.to_string()))?;
     Ok((0..classes)
         .map(|index| {

@@ -334,6 +334,11 @@ fn ridge_vector(f: &Features, p: &ClassifyParams) -> Vec<f64> {
 /// Features, training and per-pixel log-likelihoods in one call, by `p.method`. A single-colour image is an
 /// error: no boxes can tell classes apart in it.
 pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Result<LogLikelihoods> {
+    classify_prepared(img, None, training, p)
+}
+
+/// A photo the classifier can read: at least 2 × 2 pixels and more than one colour.
+fn check_image(img: &RgbImage) -> Result<()> {
     let (w, h) = img.dimensions();
     if w < 2 || h < 2 {
         return Err(FacadeError::ImageTooSmall {
@@ -348,6 +353,28 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
             "the image has a single colour; no classes can be told apart".into(),
         ));
     }
+    Ok(())
+}
+
+/// The photo's forest features ([`forest::prepare`]), made once for several trainings on it
+/// ([`classify_prepared`]); `None` for the text's mixtures, which have none to share.
+pub fn prepare(img: &RgbImage, p: &ClassifyParams) -> Result<Option<pixelclass::Prepared>> {
+    check_image(img)?;
+    match p.method {
+        Method::Forest => forest::prepare(img, &p.pixel).map(Some),
+        Method::Gmm => Ok(None),
+    }
+}
+
+/// [`classify`] with the forest's features from [`prepare`] (same `img` and `p`), when given.
+pub fn classify_prepared(
+    img: &RgbImage,
+    prepared: Option<&pixelclass::Prepared>,
+    training: &Training,
+    p: &ClassifyParams,
+) -> Result<LogLikelihoods> {
+    check_image(img)?;
+    let (w, h) = img.dimensions();
     let boxes = training.boxes(w as usize, h as usize)?;
     if p.method == Method::Forest {
         let whole = training.whole_window_boxes(w as usize, h as usize)?;
@@ -363,7 +390,14 @@ pub fn classify(img: &RgbImage, training: &Training, p: &ClassifyParams) -> Resu
                         .map(move |(x, y)| pixelclass::Sample { x, y, class: index })
                 })
                 .collect();
-        let logs = forest::log_maps(img, &samples, present.len(), &p.pixel, p.features.seed)?;
+        let logs = forest::log_maps(
+            img,
+            prepared,
+            &samples,
+            present.len(),
+            &p.pixel,
+            p.features.seed,
+        )?;
         let mut maps: [Option<Vec<f32>>; 3] = [None, None, None];
         for (class, map) in present.iter().zip(logs) {
             maps[*class as usize] = Some(map);
