@@ -12,6 +12,7 @@
 //! correlation).
 
 use image::RgbImage;
+use rayon::prelude::*;
 
 use crate::classify::{Class, LogLikelihoods};
 use crate::grow::GrowParams;
@@ -278,9 +279,9 @@ pub fn find_repeats(img: &RgbImage, templates: &[[f64; 4]], p: &RepeatParams) ->
             };
             used += 1;
             let sat = Sat::new(q);
-            for (i, sc) in score.iter_mut().enumerate() {
+            score.par_iter_mut().enumerate().for_each(|(i, sc)| {
                 *sc += ncc_at(q, &sat, &tc, ctw, cth, i % ow, i / ow);
-            }
+            });
         }
         if used == 0 {
             continue;
@@ -317,22 +318,49 @@ pub fn find_repeats(img: &RgbImage, templates: &[[f64; 4]], p: &RepeatParams) ->
                 .sum::<f64>()
                 / full.len() as f64
         };
-        for (i, _) in peaks {
-            let (cx, cy) = ((i % ow) * s, (i / ow) * s);
-            let mut best = (f64::NEG_INFINITY, 0, 0);
-            for y in cy.saturating_sub(s)..=(cy + s).min(h - th) {
-                for x in cx.saturating_sub(s)..=(cx + s).min(w - tw) {
-                    let v = fine(x, y);
-                    if v > best.0 {
-                        best = (v, x, y);
+        // The peaks refined in parallel, kept in their order: the same result on any number
+        // of threads.
+        let refined: Vec<(f64, usize, usize)> = peaks
+            .par_iter()
+            .map(|&(i, _)| {
+                let (cx, cy) = ((i % ow) * s, (i / ow) * s);
+                // Every other position within the coarse pixel's reach, then every position
+                // next to the best of them: a quarter of the correlations of a full scan.
+                let look = |xs: std::ops::RangeInclusive<usize>,
+                            ys: std::ops::RangeInclusive<usize>,
+                            step: usize,
+                            mut best: (f64, usize, usize)| {
+                    for y in ys.step_by(step) {
+                        for x in xs.clone().step_by(step) {
+                            let v = fine(x, y);
+                            if v > best.0 {
+                                best = (v, x, y);
+                            }
+                        }
                     }
-                }
-            }
-            if best.0 >= p.threshold {
-                let (x, y) = (best.1 as f64, best.2 as f64);
+                    best
+                };
+                let coarse = look(
+                    cx.saturating_sub(s)..=(cx + s).min(w - tw),
+                    cy.saturating_sub(s)..=(cy + s).min(h - th),
+                    2,
+                    (f64::NEG_INFINITY, 0, 0),
+                );
+                let (bx, by) = (coarse.1, coarse.2);
+                look(
+                    bx.saturating_sub(1)..=(bx + 1).min(w - tw),
+                    by.saturating_sub(1)..=(by + 1).min(h - th),
+                    1,
+                    coarse,
+                )
+            })
+            .collect();
+        for (score, x, y) in refined {
+            if score >= p.threshold {
+                let (x, y) = (x as f64, y as f64);
                 found.push((
                     [x + inner[0], y + inner[1], x + inner[2], y + inner[3]],
-                    best.0,
+                    score,
                 ));
             }
         }
