@@ -10,8 +10,8 @@
 //!   (up to three ground-truth window components) with s × s boxes for wall and background.
 //! - FACADE_BOX (s, default 9), FACADE_MARGIN (default 0), FACADE_RIDGE_REL, FACADE_PCS,
 //!   FACADE_CLASSIFIER (gmm or forest, default forest); FACADE_INNER,
-//!   FACADE_RING: how whole-window boxes are sampled (
-//!   `window_inner`, `window_ring`).
+//!   FACADE_RING: how whole-window boxes are sampled (`window_inner`, `window_ring`);
+//!   FACADE_SAMPLES: pixels drawn from each box (`samples_per_box`).
 //! - FACADE_MAP=model|oracle: the classifier's map (default), or an experiment map made from
 //!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
 //!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
@@ -166,6 +166,7 @@ fn classify_params() -> ClassifyParams {
     }
     p.window_inner = env_f64("FACADE_INNER", p.window_inner);
     p.window_ring = env_f64("FACADE_RING", p.window_ring);
+    p.samples_per_box = env_usize("FACADE_SAMPLES", p.samples_per_box);
     // FACADE_AC=0|1 (autocontext off/on; unset: the default), FACADE_AC_FOLDS,
     // FACADE_AC_ROWCOL=0|1, FACADE_AC_SIGMAS (comma-separated), FACADE_AC_FOLD_TREES, FACADE_AC_AVERAGE=0|1.
     if let Ok(v) = std::env::var("FACADE_AC") {
