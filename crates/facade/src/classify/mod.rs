@@ -359,21 +359,26 @@ fn check_image(img: &RgbImage) -> Result<()> {
 /// The photo's forest features ([`forest::prepare`]), made once for several trainings on it
 /// ([`classify_prepared`]); `None` for the text's mixtures, which have none to share.
 pub fn prepare(img: &RgbImage, p: &ClassifyParams) -> Result<Option<pixelclass::Prepared>> {
-    check_image(img)?;
     match p.method {
-        Method::Forest => forest::prepare(img, &p.pixel).map(Some),
+        Method::Forest => {
+            check_image(img)?;
+            forest::prepare(img, &p.pixel).map(Some)
+        }
         Method::Gmm => Ok(None),
     }
 }
 
-/// [`classify`] with the forest's features from [`prepare`] (same `img` and `p`), when given.
+/// [`classify`] with the forest's features from [`prepare`] (same `img` and `p`), when given;
+/// the photo was then checked when they were made.
 pub fn classify_prepared(
     img: &RgbImage,
     prepared: Option<&pixelclass::Prepared>,
     training: &Training,
     p: &ClassifyParams,
 ) -> Result<LogLikelihoods> {
-    check_image(img)?;
+    if prepared.is_none() {
+        check_image(img)?;
+    }
     let (w, h) = img.dimensions();
     let boxes = training.boxes(w as usize, h as usize)?;
     if p.method == Method::Forest {

@@ -11,8 +11,9 @@ use crate::estimate::{Footprint, Role, Structure};
 use super::common::{Part, n};
 
 /// A wall run: one box per straight piece, each end lengthened so that neighbouring pieces
-/// meet in a mitre ([`end_extensions`]). Local −z of every piece is the field side (the centreline keeps the
-/// field on its left, `Footprint::Wall`), where the `curtain` rule puts the parapet.
+/// meet in a mitre ([`end_extensions`]). Local −z of every piece is the field side (the
+/// centreline keeps the field on its left, `Footprint::Wall`), where the `curtain` rule puts
+/// the parapet.
 /// `textures`: the wall samples' list, when there are any (one of them per shape, tinted by the
 /// stone colour, as the library's structures take them).
 pub(super) fn run(s: &Structure, textures: Option<&str>) -> Part {
@@ -107,10 +108,11 @@ fn end_extensions(pieces: &[([[f64; 2]; 2], f64)], closed: bool) -> Vec<[f64; 2]
         let half_turn = cos.acos() / 2.0;
         (width / 2.0 * half_turn.tan()).min(width / 2.0)
     };
+    let dirs: Vec<[f64; 2]> = pieces.iter().map(|(p, _)| dir(p)).collect();
     let n = pieces.len();
     (0..n)
         .map(|k| {
-            let (p, width) = &pieces[k];
+            let width = pieces[k].1;
             let prev = if k > 0 {
                 Some(k - 1)
             } else {
@@ -121,8 +123,8 @@ fn end_extensions(pieces: &[([[f64; 2]; 2], f64)], closed: bool) -> Vec<[f64; 2]
             } else {
                 (closed && n > 2).then_some(0)
             };
-            let start = prev.map_or(width / 2.0, |j| mitre(dir(&pieces[j].0), dir(p), *width));
-            let end = next.map_or(width / 2.0, |j| mitre(dir(p), dir(&pieces[j].0), *width));
+            let start = prev.map_or(width / 2.0, |j| mitre(dirs[j], dirs[k], width));
+            let end = next.map_or(width / 2.0, |j| mitre(dirs[k], dirs[j], width));
             [start, end]
         })
         .collect()
