@@ -512,7 +512,7 @@ fn parse_grey(
     }
     laps.lap("wall_thickness + close_gaps");
     if opts.drop_marks {
-        pre.dropped_marks = binarize::drop_marks(&mut bin);
+        pre.dropped_marks = binarize::drop_marks(&mut bin, is_learned);
         pre.wall_pixels = bin.pixels().filter(|p| p[0] == 255).count();
     }
     laps.lap("drop_marks");
