@@ -7,6 +7,7 @@ use imageproc::contrast::otsu_level;
 use raster::components::{Components, Connectivity, components};
 use raster::morphology::{Norm, top_hat};
 
+use crate::castle_extent;
 use crate::pixels::{close, open_close};
 
 /// What pre-processing found, for reports and warnings.
@@ -177,7 +178,8 @@ pub fn preprocess_learned(mask: GrayImage, min_region: f64) -> (GrayImage, PreSt
 }
 
 /// §5.1.2 (2)–(5) on a binary image: specks of paper filled, open/close 3 × 3, specks of ink
-/// removed; then the castle kept (regions outside its extent dropped); counts in `stats`.
+/// removed; then the castle kept (regions outside its box dropped, or with `grow_castle` those
+/// its ink does not reach, [`castle_extent`]); counts in `stats`.
 fn steps_two_to_five(
     mut img: GrayImage,
     min: usize,
@@ -203,8 +205,8 @@ fn steps_two_to_five(
     // that windows and doors cut); legends, scale bars and north arrows away from it go.
     // Addition to §5.1.2, which left this to the user's clean-up (§5.1.1, §5.2 item 2).
     let (w, h) = (img.width() as usize, img.height() as usize);
-    let reach = (CASTLE_REACH * w.max(h) as f64).round().min(254.0) as u8;
-    let keep = castle_regions(&black, w, h, grow_castle.then_some(reach));
+    let reach = grow_castle.then(|| castle_extent::reach(w, h));
+    let keep = castle_extent::castle_regions(&black, w, h, reach);
     stats.dropped_outside = (1..keep.len())
         .filter(|&i| !keep[i] && black.sizes[i] > 0)
         .count();
@@ -217,123 +219,10 @@ fn steps_two_to_five(
     img
 }
 
-/// How near the castle's ink, as a share of the drawing's long side, a region's ink must come
-/// to join it ([`castle_regions`]).
-const CASTLE_REACH: f64 = 0.03;
-
-/// The share of the sheet's width or height beyond which a region is a frame or a sheet edge
-/// to [`castle_regions`].
-const SHEET_SPAN: f64 = 0.9;
-
-/// Which ink regions of `black` are the castle (index 0, the background, is never kept;
-/// `sizes` of 0 are regions already removed): the largest region and those whose bounding box
-/// lies within its box; and, with a `reach` in pixels, every region whose ink comes within
-/// `reach` of the ink kept so far (chessboard distance), round after round until none joins.
-/// A region that spans [`SHEET_SPAN`] of the sheet's width or height (a frame, a sheet edge)
-/// joins only from within the box.
-///
-/// Issue 26: with the learned ink the castle grows by reach ([`CASTLE_REACH`]). Keeping only
-/// what lay inside the largest region's box dropped every piece of a wall cut by windows and
-/// doors that reached beyond it (a flat's walls, Bell's Udhruh), and outworks. Growing by
-/// boxes instead of ink joined the next figure of a book page through boxes that overlap at
-/// the corners (Pierrefonds: plan–model IoU 0.905 → 0.795). Measured with the learned ink in
-/// docs/plan.md ("What the castle keeps"). The rules' threshold keeps letters, numerals and
-/// hachure blobs near the castle, which then pass as towers (exact towers 6 → 2 of 31), so it
-/// keeps the box.
-fn castle_regions(black: &Components, w: usize, h: usize, reach: Option<u8>) -> Vec<bool> {
-    let (sizes, bbox) = (&black.sizes, &black.bbox);
-    let mut keep = vec![false; sizes.len()];
-    let Some((big, _)) = sizes.iter().enumerate().skip(1).max_by_key(|&(_, s)| *s) else {
-        return keep;
-    };
-    let b = bbox[big];
-    for (i, c) in bbox.iter().enumerate().skip(1) {
-        keep[i] = i == big
-            || (sizes[i] > 0 && c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3]);
-    }
-    let Some(reach) = reach else {
-        return keep;
-    };
-    // A frame or a sheet edge spans the sheet; a piece of a tightly cropped castle only
-    // touches its border.
-    let may_join: Vec<bool> = (0..sizes.len())
-        .map(|i| {
-            let c = bbox[i];
-            i > 0
-                && sizes[i] > 0
-                && f64::from(c[2] + 1 - c[0]) < SHEET_SPAN * w as f64
-                && f64::from(c[3] + 1 - c[1]) < SHEET_SPAN * h as f64
-        })
-        .collect();
-    grow_by_ink(black, w, h, reach, &may_join, &mut keep);
-    keep
-}
-
-/// Marks kept every region of `black` that `may_join` whose ink comes within `reach`
-/// (chessboard) of kept ink, where a region that joins counts as kept ink at once: one search
-/// by distance from the kept ink, in which the pixels of a region that joins start again at 0.
-fn grow_by_ink(
-    black: &Components,
-    w: usize,
-    h: usize,
-    reach: u8,
-    may_join: &[bool],
-    keep: &mut [bool],
-) {
-    // Each region's pixels, by a counting sort on the labels.
-    let mut start = vec![0usize; keep.len() + 1];
-    for &l in &black.labels {
-        start[l as usize + 1] += 1;
-    }
-    for l in 0..keep.len() {
-        start[l + 1] += start[l];
-    }
-    let mut pixels = vec![0usize; black.labels.len()];
-    let mut next = start.clone();
-    for (i, &l) in black.labels.iter().enumerate() {
-        pixels[next[l as usize]] = i;
-        next[l as usize] += 1;
-    }
-    let region = |l: usize| &pixels[start[l]..start[l + 1]];
-    let mut dist = vec![u8::MAX; w * h];
-    let mut bucket: Vec<Vec<usize>> = vec![Vec::new(); usize::from(reach) + 1];
-    for l in (1..keep.len()).filter(|&l| keep[l]) {
-        for &i in region(l) {
-            dist[i] = 0;
-            bucket[0].push(i);
-        }
-    }
-    while let Some(d) = bucket.iter().position(|b| !b.is_empty()) {
-        let i = bucket[d].pop().expect("a non-empty bucket");
-        if usize::from(dist[i]) < d || d >= usize::from(reach) {
-            continue; // reached nearer since, or at the reach
-        }
-        let (x, y) = (i % w, i / w);
-        for ny in y.saturating_sub(1)..(y + 2).min(h) {
-            for nx in x.saturating_sub(1)..(x + 2).min(w) {
-                let j = ny * w + nx;
-                let l = black.labels[j] as usize;
-                if l > 0 && !keep[l] && may_join[l] {
-                    keep[l] = true;
-                    for &k in region(l) {
-                        dist[k] = 0;
-                        bucket[0].push(k);
-                    }
-                } else if usize::from(dist[j]) > d + 1 {
-                    dist[j] = (d + 1) as u8;
-                    bucket[d + 1].push(j);
-                }
-            }
-        }
-    }
-}
-
 /// Typical wall thickness in pixels: for a strip of thickness T the mean distance from its
 /// pixels to the nearest open pixel is about T / 4 (chessboard distance), so T ≈ 4 × mean.
 pub fn wall_thickness(bin: &GrayImage) -> f64 {
-    let (w, h) = (bin.width() as usize, bin.height() as usize);
-    let open: Vec<bool> = bin.as_raw().iter().map(|&p| p != 255).collect();
-    let dist = crate::pixels::chessboard(&open, w, h);
+    let dist = distance_to_open(bin);
     let (mut sum, mut n) = (0.0, 0usize);
     for (&d, &b) in dist.iter().zip(bin.as_raw()) {
         if b == 255 {
@@ -342,6 +231,12 @@ pub fn wall_thickness(bin: &GrayImage) -> f64 {
         }
     }
     if n == 0 { 0.0 } else { 4.0 * sum / n as f64 }
+}
+
+/// Each pixel's chessboard distance to the nearest pixel that is not wall (255).
+fn distance_to_open(bin: &GrayImage) -> Vec<u8> {
+    let open: Vec<bool> = bin.as_raw().iter().map(|&p| p != 255).collect();
+    crate::pixels::chessboard(&open, bin.width() as usize, bin.height() as usize)
 }
 
 /// Closes door and gate gaps narrower than the walls are thick (issue 11; §5.2 item 4 names
@@ -554,9 +449,7 @@ pub fn drop_marks(img: &mut GrayImage, keep_wall_pieces: bool) -> usize {
 /// thickness). Issue 26: a wall cut by windows and doors falls into such pieces, none enclosing
 /// a room; letters, hachures and rib fragments are thinner or shorter.
 fn wall_pieces(black: &Components, img: &GrayImage) -> Vec<bool> {
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    let open: Vec<bool> = img.as_raw().iter().map(|&p| p != 255).collect();
-    let dist = crate::pixels::chessboard(&open, w, h);
+    let dist = distance_to_open(img);
     let mut sum = vec![0.0f64; black.sizes.len()];
     for (&l, &d) in black.labels.iter().zip(&dist) {
         sum[l as usize] += f64::from(d);
@@ -697,34 +590,6 @@ mod tests {
         assert_eq!(drop_marks(&mut rules, false), 4);
         assert_eq!(rules.get_pixel(104, 100)[0], 0);
         assert_eq!(rules.get_pixel(6, 6)[0], 255);
-    }
-
-    #[test]
-    fn the_castle_keeps_its_box_or_grows_to_the_ink_that_comes_near() {
-        // A 120 × 80 sheet. L: the castle, an L of 4-px bars (box 10..60); F: a block inside
-        // its box; B: a block whose box overlaps L's at the corner, its ink 40 px from L's;
-        // C: a bar 4 px right of L's top bar; D: a bar 4 px right of C; E: a line 4 px right
-        // of D, as high as the sheet (a frame).
-        let sheet = GrayImage::from_fn(120, 80, |x, y| {
-            let l = ((10..60).contains(&x) && (10..14).contains(&y))
-                || ((10..14).contains(&x) && (10..60).contains(&y));
-            let f = (30..34).contains(&x) && (30..34).contains(&y);
-            let b = (54..66).contains(&x) && (54..66).contains(&y);
-            let c = (63..80).contains(&x) && (10..14).contains(&y);
-            let d = (83..100).contains(&x) && (10..14).contains(&y);
-            let e = (103..105).contains(&x);
-            Luma([if l || f || b || c || d || e { 255 } else { 0 }])
-        });
-        let black = components(&sheet, 255, Connectivity::Eight);
-        let kept = |reach: Option<u8>| {
-            let keep = castle_regions(&black, 120, 80, reach);
-            // Which of L, F, B, C, D, E stay, by one pixel of each.
-            [(20, 11), (31, 31), (60, 60), (70, 11), (90, 11), (104, 40)]
-                .map(|(x, y)| keep[black.labels[y * 120 + x] as usize])
-        };
-        assert_eq!(kept(None), [true, true, false, false, false, false]);
-        assert_eq!(kept(Some(3)), [true, true, false, false, false, false]);
-        assert_eq!(kept(Some(4)), [true, true, false, true, true, false]);
     }
 
     /// A 480 × 480 sheet: a round room (ring of radius 40, 10-px wall) with a 3-px cross of

@@ -41,6 +41,7 @@
 
 pub mod binarize;
 pub mod bulges;
+mod castle_extent;
 pub mod clean;
 pub mod corrections;
 pub mod dashes;
