@@ -21,6 +21,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         hachures: args.hachures,
         dashes: !args.no_dashes,
         inner_ward_towers: !args.no_inner_towers,
+        close_gates: !args.no_gates,
         ink: args.ink,
         ..Default::default()
     };
@@ -185,6 +186,11 @@ pub struct PlanArgs {
     /// towers bulging into a courtyard from a ward's wall count too; see docs/plan.md).
     #[arg(long)]
     pub no_inner_towers: bool,
+    /// Leave gates and doors wider than two thirds of a wall open, as §5.1.2 does (by default
+    /// a gap up to about twice the wall's thickness is plugged when that encloses a ward or a
+    /// room; see docs/plan.md, "Gates").
+    #[arg(long)]
+    pub no_gates: bool,
 }
 
 #[cfg(test)]
@@ -311,6 +317,14 @@ mod flag_tests {
         assert!(plan_args(&["--no-inner-towers"]).unwrap().no_inner_towers);
         assert!(plan_args(&["--no-inner-towers", "yes"]).is_err());
         assert!(plan_args(&["--inner-towers"]).is_err());
+    }
+
+    #[test]
+    fn plan_gates_are_plugged_unless_turned_off() {
+        assert!(!plan_args(&[]).unwrap().no_gates);
+        assert!(plan_args(&["--no-gates"]).unwrap().no_gates);
+        assert!(plan_args(&["--no-gates", "yes"]).is_err());
+        assert!(plan_args(&["--gates"]).is_err());
     }
 
     #[test]

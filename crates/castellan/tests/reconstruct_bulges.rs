@@ -122,7 +122,9 @@ fn montargis_towers_with_a_room_or_a_bulge_are_all_in_the_model() {
         groups.len(),
         towers.len()
     );
-    assert!(bulges >= 6, "the plan finds Montargis's bulge towers");
+    // 6 bulges and 6 tower rooms with the gates open; with them plugged (plan::gates) 5
+    // bulges and 7 tower rooms.
+    assert!(bulges >= 5, "the plan finds Montargis's bulge towers");
     assert!(solid >= 1 && solid <= bulges);
     assert!(
         towers.len() >= counted - neither,

@@ -3,7 +3,7 @@
 //! labelled as walls against `<id>_wall.png`, and whether a courtyard (closed outer wall) was
 //! found; and the IoU of the wall mask chapter 5 parsed (`ParsedPlan::walls`, the learned wall
 //! ink or the rules' threshold after §5.1.2) and of Otsu's bare threshold, against the same
-//! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps]
+//! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps] [--no-gates]
 //! [--rules]`.
 
 use std::path::PathBuf;
@@ -13,6 +13,7 @@ fn main() {
         .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
     let opts = plan::Options {
         close_gaps: !std::env::args().any(|a| a == "--no-close-gaps"),
+        close_gates: !std::env::args().any(|a| a == "--no-gates"),
         ink: if std::env::args().any(|a| a == "--rules") {
             plan::ink::InkMethod::Rules
         } else {

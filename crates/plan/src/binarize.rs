@@ -36,6 +36,8 @@ pub struct PreStats {
     pub hachure_pixels: usize,
     /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
     pub dash_links: usize,
+    /// Wall pixels added to plug gates ([`crate::gates::close_gates`]).
+    pub gate_pixels: usize,
 }
 
 /// The clean-up steps added to §5.1.2 for real drawings, run on the thresholded drawing

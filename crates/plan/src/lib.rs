@@ -48,6 +48,7 @@ pub mod dashes;
 pub mod eval;
 pub mod extrude;
 pub mod fit;
+pub mod gates;
 pub mod graph;
 pub mod hachure_bands;
 pub mod hachure_blobs;
@@ -98,6 +99,9 @@ pub struct Options {
     /// default: on the development set it finds Chambord's and Bonaguil's inner towers with
     /// points and exact counts unchanged (docs/plan.md, "Inner-ward towers").
     pub inner_ward_towers: bool,
+    /// Plug gates and doors wider than `close_gaps` bridges where that encloses a ward or a
+    /// room ([`gates::close_gates`]; addition to §5.1.2, off: the text's open enclosures).
+    pub close_gates: bool,
     /// Drop ink regions without a room of their own that are not the castle (letters,
     /// numbers, north arrows; [`binarize::drop_marks`]), after the gaps are closed.
     pub drop_marks: bool,
@@ -144,6 +148,7 @@ impl Default for Options {
             max_pixels: 40_000_000,
             upsample_below: 1000,
             close_gaps: true,
+            close_gates: true,
             inner_ward_towers: true,
             drop_marks: true,
             ward_ratio: 0.3,
@@ -510,6 +515,15 @@ fn parse_grey(
         let t = binarize::wall_thickness(&bin);
         let cap = (w.max(h) / 150).clamp(1, 12) as f64;
         binarize::close_gaps(&mut bin, (t / 3.0).ceil().min(cap) as u8);
+        if opts.close_gates {
+            // Gates up to about twice the wall's thickness (probe radius T; 0.75 T and 1.5 T
+            // were measured, docs/plan.md "Gates"), when plugging them encloses more than a
+            // speck of step (2).
+            let total = (w as usize) * (h as usize);
+            let min = ((total as f64) * opts.min_region).ceil().max(1.0) as usize;
+            let radius = t.ceil().min(f64::from(gates::MAX_RADIUS)) as u8;
+            pre.gate_pixels = gates::close_gates(&mut bin, radius, min);
+        }
     }
     laps.lap("wall_thickness + close_gaps");
     if opts.drop_marks {

@@ -323,15 +323,15 @@ async fn a_simulated_user_corrects_every_development_plan() {
         outcomes.len(),
         set.tolerance_px
     );
-    // Floors at the figures measured (docs/serve.md, "Corrections by a simulated user"): 46 →
-    // 25 points wrong of 169, exact tower counts 1 → 8 of 31 (the user knows where towers are
+    // Floors at the figures measured (docs/serve.md, "Corrections by a simulated user"): 40 →
+    // 16 points wrong of 169, exact tower counts 2 → 6 of 31 (the user knows where towers are
     // only at annotated tower points), every annotated room and tower built as its kind within
     // the set's tolerance (37 of 38 at the very pixel: Chambord's tower point lies on wall ink).
     assert!(
-        wrong_after <= 26,
+        wrong_after <= 17,
         "{wrong_after} of {points} points still wrong"
     );
     assert!(wrong_after < wrong_before, "{wrong_before} → {wrong_after}");
-    assert!(exact >= 8, "{exact} exact tower counts");
+    assert!(exact >= 6, "{exact} exact tower counts");
     assert_eq!(right, checked, "rooms and towers built right");
 }
