@@ -7,12 +7,9 @@
 //! city objects. Without Python 3 and its venv module the cjio checks skip with a message,
 //! unless `CI` is set.
 
-use std::collections::{BTreeMap, HashMap, HashSet};
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::collections::BTreeMap;
 
 use nalgebra::{Isometry3, Vector3};
-use serde_json::Value;
 use vsg::export::semantics::{Attribute, Frame, Heritage, Part, Placement};
 use vsg::export::{ExportError, ExportOptions, to_cityjson};
 use vsg::shape::{Primitive, ShapeType};
@@ -207,154 +204,15 @@ fn castle() -> Tree {
     t
 }
 
-fn heritage(name: &str) -> Heritage {
-    Heritage {
-        name: name.into(),
-        ..Heritage::default()
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 // Reading the file back.
 
-fn write(model: &Model, heritage: &Heritage) -> (String, Value) {
-    let text = to_cityjson(model, heritage, &ExportOptions::default()).expect("export succeeds");
-    let json = serde_json::from_str(&text).expect("the file is JSON");
-    (text, json)
-}
-
-/// The file's vertices in metres (transform applied).
-fn vertices(doc: &Value) -> Vec<[f64; 3]> {
-    let t = &doc["transform"];
-    let num = |v: &Value, k: usize| v[k].as_f64().expect("a number");
-    doc["vertices"]
-        .as_array()
-        .expect("vertices")
-        .iter()
-        .map(|v| [0, 1, 2].map(|k| num(&t["translate"], k) + num(&t["scale"], k) * num(v, k)))
-        .collect()
-}
-
-type Ring = Vec<usize>;
-type Surface = Vec<Ring>;
-type Shell = Vec<Surface>;
-
-/// The solids (outer shells) of a `CompositeSolid`, with each surface's semantic type.
-fn solids(geometry: &Value) -> Vec<(Shell, Vec<String>)> {
-    assert_eq!(geometry["type"], "CompositeSolid");
-    let boundaries: Vec<Vec<Shell>> =
-        serde_json::from_value(geometry["boundaries"].clone()).expect("solid boundaries");
-    let values: Vec<Vec<Vec<usize>>> =
-        serde_json::from_value(geometry["semantics"]["values"].clone()).expect("values");
-    let surfaces = geometry["semantics"]["surfaces"]
-        .as_array()
-        .expect("surfaces");
-    boundaries
-        .into_iter()
-        .zip(values)
-        .map(|(solid, values)| {
-            assert_eq!(solid.len(), 1, "one outer shell per solid");
-            let kinds = values[0]
-                .iter()
-                .map(|&i| surfaces[i]["type"].as_str().expect("a type").to_string())
-                .collect();
-            (solid.into_iter().next().expect("a shell"), kinds)
-        })
-        .collect()
-}
-
-/// Signed volume of a shell from its polygons (holes included): Σ p₀·A/3 over the faces,
-/// with A the ring's vector area; positive when the shell faces outwards.
-fn signed_volume(shell: &Shell, v: &[[f64; 3]]) -> f64 {
-    let mut volume = 0.0;
-    for surface in shell {
-        let origin = v[surface[0][0]];
-        for ring in surface {
-            for w in 0..ring.len() {
-                let a = sub(v[ring[w]], origin);
-                let b = sub(v[ring[(w + 1) % ring.len()]], origin);
-                // Relative to a point of the face's plane, Σ (a × b)/2 is the ring's area
-                // vector; the volume's term is that point's height along it.
-                let c = [
-                    a[1] * b[2] - a[2] * b[1],
-                    a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0],
-                ];
-                volume += (origin[0] * c[0] + origin[1] * c[1] + origin[2] * c[2]) / 6.0;
-            }
-        }
-    }
-    volume
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// Every directed edge of the shell's rings has its reverse exactly once: closed, and every
-/// face oriented like its neighbours.
-fn is_closed(shell: &Shell) -> bool {
-    let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
-    for ring in shell.iter().flatten() {
-        for w in 0..ring.len() {
-            *edges
-                .entry((ring[w], ring[(w + 1) % ring.len()]))
-                .or_default() += 1;
-        }
-    }
-    edges
-        .iter()
-        .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
-}
-
-/// Asserts that no two vertices are equal and that every one is used.
-fn assert_vertices_unique_and_used(doc: &Value) {
-    let vs: Vec<[i64; 3]> = serde_json::from_value(doc["vertices"].clone()).expect("integers");
-    let distinct: HashSet<[i64; 3]> = vs.iter().copied().collect();
-    assert_eq!(distinct.len(), vs.len(), "duplicate vertices");
-    let mut used = vec![false; vs.len()];
-    fn mark(v: &Value, used: &mut [bool]) {
-        match v {
-            Value::Array(items) => items.iter().for_each(|i| mark(i, used)),
-            Value::Number(n) => used[n.as_u64().expect("an index") as usize] = true,
-            _ => panic!("boundaries hold arrays and indices only"),
-        }
-    }
-    for object in doc["CityObjects"].as_object().expect("objects").values() {
-        for g in object["geometry"].as_array().into_iter().flatten() {
-            mark(&g["boundaries"], &mut used);
-        }
-    }
-    assert!(used.iter().all(|&u| u), "unused vertices");
-}
-
-/// Asserts that every solid of every geometry in the file encloses a positive volume: its
-/// shell faces outwards.
-fn assert_outward(name: &str, doc: &Value) {
-    let v = vertices(doc);
-    for (id, object) in doc["CityObjects"].as_object().expect("objects") {
-        for g in object["geometry"].as_array().into_iter().flatten() {
-            for (shell, _) in solids(g) {
-                let volume = signed_volume(&shell, &v);
-                assert!(
-                    volume > 0.0,
-                    "{name}: {id} has a shell facing inwards ({volume} m³)"
-                );
-            }
-        }
-    }
-}
-
-/// Counts of semantic surface types over all faces of a geometry object.
-fn surface_counts(geometry: &Value) -> BTreeMap<String, usize> {
-    let mut counts = BTreeMap::new();
-    for (_, kinds) in solids(geometry) {
-        for k in kinds {
-            *counts.entry(k).or_default() += 1;
-        }
-    }
-    counts
-}
+#[path = "support/cityjson_read.rs"]
+mod read;
+use read::{
+    assert_valid, assert_vertices_unique_and_used, heritage, is_closed, signed_volume, solids,
+    surface_counts, vertices, write,
+};
 
 // ---------------------------------------------------------------------------------------------
 // The validators.
@@ -365,21 +223,7 @@ mod cjio;
 mod cjval_check;
 #[path = "support/venv.rs"]
 mod venv;
-use cjio::assert_cjio_reads;
 use cjval_check::assert_cjval_valid;
-
-/// Both validators on one file.
-fn assert_valid(name: &str, text: &str, doc: &Value) {
-    assert_cjval_valid(name, text);
-    let parts = doc["CityObjects"]
-        .as_object()
-        .expect("objects")
-        .values()
-        .filter(|o| o["type"] == "BuildingPart")
-        .count();
-    let vertices = doc["vertices"].as_array().expect("vertices").len();
-    assert_cjio_reads(name, text, parts, vertices);
-}
 
 // ---------------------------------------------------------------------------------------------
 // The tests.
@@ -732,157 +576,4 @@ fn an_empty_model_is_a_valid_building_without_parts() {
     assert_eq!(objects["building"]["type"], "Building");
     assert_eq!(doc["vertices"], serde_json::json!([]));
     assert_cjval_valid("empty", &text);
-}
-
-/// Imports resolve inside `library/`.
-struct LibraryDir(PathBuf);
-
-impl vsg::import::Resolver for LibraryDir {
-    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
-        std::fs::read_to_string(self.0.join(path))
-            .map(|t| (path.to_string(), t))
-            .map_err(|e| e.to_string())
-    }
-}
-
-fn run(name: &str, src: &str) -> Model {
-    let library = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library");
-    vsg::run_with(
-        name,
-        src,
-        &vsg::RunOptions::default(),
-        &mut LibraryDir(library),
-    )
-    .unwrap_or_else(|e| panic!("{}", e.render(name, src)))
-}
-
-/// A castle like the Coucy demo's `model.vsg` (`castellan demo`): the library's round towers,
-/// keeps with windows and gatehouse imported once per structure with their own parameters,
-/// and curtain runs and room blocks as the demo writes them, each a child of the axiom.
-const COUCY_LIKE: &str = r#"
-import "round_tower.vsg" as tower1 (radius = 11.5, height = 35.7, wall = 4.9, floors = 9, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 16.1, overhang = 0.4);
-import "round_tower.vsg" as tower2 (radius = 11.5, height = 35.7, wall = 4.7, floors = 9, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 16.1, overhang = 0.4);
-import "round_tower.vsg" as keep1 (radius = 16.2, height = 53.5, wall = 6.8, floors = 13, floorT = 0.3, slits = 8, slitH = 1.4, roofH = 22.6, overhang = 0.4);
-import "keep.vsg" as chapel1 (width = 30.1, depth = 21.5, height = 8, wall = 4.3, floorH = 4, floorT = 0.4, windows = 4, windowW = 1.2, windowH = 1.6, sill = 0.8, roofH = 7.5);
-import "keep.vsg" as range4 (width = 11.8, depth = 11.2, height = 6, wall = 3.4, floorH = 3, floorT = 0.4, windows = 1, windowW = 1.2, windowH = 1.2, sill = 0.6, roofH = 3.9);
-import "gatehouse.vsg" as gate1 ();
-float curtainH = 14;
-float curtainT = 3;
-float curtainParapetH = 1.8;
-float curtainMerlon = 1.4;
-float curtainWalkT = 0.2;
-float roomRoofT = 0.5;
-Axiom ::
-    T(0, 0, 0) I("box", {1, 1, 1})
-    T(60, 0, 0) I("box", {1, 1, 1})
-    T(30, 0, 60) I("box", {1, 1, 1})
-    T(30, 0, 25) I("box", {1, 1, 1})
-    T(85, 0, 40) R(0, 0.4, 0) I("box", {1, 1, 1})
-    T(30, 0, -12) I("box", {1, 1, 1})
-    T(30, curtainH/2, 0) I("box", {37, curtainH, curtainT})
-    T(5, curtainH/2, 30) R(0, 1.2, 0) I("box", {40, curtainH, curtainT})
-    T(70, 3, 70) R(0, -0.3, 0) I("box", {12, 6, 9})
-    {tower1Site, tower2Site, keep1Site, chapel1Site, range4Site, gate1Site, curtain1, curtain2, range5};
-tower1Site :: {tower1.Axiom};
-tower2Site :: {tower2.Axiom};
-keep1Site :: {keep1.Axiom};
-chapel1Site :: {chapel1.Axiom};
-range4Site :: {range4.Axiom};
-gate1Site :: {gate1.Axiom};
-curtain1 :: {curtain};
-curtain2 :: {curtain};
-range5 :: {roomBlock};
-curtain :: split("Y", {~1, curtainParapetH}){wallStone, curtainTop};
-curtainTop :: split("Z", {~1, ~4}){curtainParapet, curtainWalkZone};
-curtainParapet :: repeat("X", {~curtainMerlon, ~curtainMerlon}){wallStone, curtainCrenel};
-curtainCrenel :: split("Y", {~4, ~5}){wallStone, opening};
-curtainWalkZone :: split("Y", {curtainWalkT, ~1}){curtainWalk, opening};
-curtainWalk :: appearance("color", {0.5, 0.47, 0.42}){j3d.terminal};
-roomBlock :: split("Y", {~1, roomRoofT}){wallStone, roof};
-opening :: void(){j3d.terminal};
-roof :: appearance("color", {0.55, 0.2, 0.15}){j3d.terminal};
-wallStone :: appearance("color", {0.76, 0.72, 0.64}, "density", 2200){j3d.terminal};
-"#;
-
-#[test]
-fn a_coucy_like_castle_is_valid() {
-    let model = run("coucy_like.vsg", COUCY_LIKE);
-    let mut h = heritage("Coucy-like castle");
-    h.frame.placement = Some(Placement {
-        origin: [717_000.0, 6_935_000.0, 150.0],
-        epsg: 2154,
-        rotation_deg: 12.0,
-    });
-    let start = Instant::now();
-    let text = to_cityjson(&model, &h, &ExportOptions::default()).expect("export succeeds");
-    let elapsed = start.elapsed();
-    let doc: Value = serde_json::from_str(&text).expect("JSON");
-    eprintln!(
-        "coucy-like: {} bytes, {} vertices, written in {:.3} s (debug build)",
-        text.len(),
-        doc["vertices"].as_array().map_or(0, Vec::len),
-        elapsed.as_secs_f64()
-    );
-    let objects = doc["CityObjects"].as_object().expect("objects");
-    assert_eq!(objects.len(), 1 + 9);
-    let part = |name: &str| &objects[&format!("Coucy-like_castle-{name}")];
-    // The keeps of the library have windows: LoD 2 and 3; the towers and curtains LoD 2 only.
-    for (name, lods) in [
-        ("chapel1Site", 2),
-        ("range4Site", 2),
-        ("tower1Site", 1),
-        ("keep1Site", 1),
-        ("curtain1", 1),
-        ("range5", 1),
-    ] {
-        assert_eq!(
-            part(name)["geometry"].as_array().map(Vec::len),
-            Some(lods),
-            "{name}"
-        );
-    }
-    let lod3 = surface_counts(&part("chapel1Site")["geometry"][1]);
-    assert!(lod3.get("Window").is_some_and(|&n| n > 0), "{lod3:?}");
-    let tower = surface_counts(&part("tower1Site")["geometry"][0]);
-    for kind in [
-        "RoofSurface",
-        "WallSurface",
-        "GroundSurface",
-        "FloorSurface",
-    ] {
-        assert!(tower.contains_key(kind), "{kind} in {tower:?}");
-    }
-    let curtain = surface_counts(&part("curtain1")["geometry"][0]);
-    assert!(curtain.contains_key("OuterFloorSurface"), "{curtain:?}");
-    // Masses from the densities: the curtains' and the room block's stone.
-    let mass = part("curtain1")["attributes"]["mass_kg"]
-        .as_f64()
-        .expect("mass");
-    let volume = part("curtain1")["attributes"]["volume_m3"]
-        .as_f64()
-        .expect("volume");
-    assert!(mass > 0.0 && (mass / volume - 2200.0).abs() < 2200.0 * 0.5);
-    assert_vertices_unique_and_used(&doc);
-    assert_outward("coucy-like", &doc);
-    assert_valid("coucy-like", &text, &doc);
-}
-
-/// The repository's example castle and the library's programs, run as a user would.
-#[test]
-fn example_and_library_programs_are_valid() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    for path in [
-        "examples/castle.vsg",
-        "library/keep.vsg",
-        "library/round_tower.vsg",
-        "library/gatehouse.vsg",
-        "library/curtain_wall.vsg",
-    ] {
-        let src = std::fs::read_to_string(root.join(path)).expect("the program exists");
-        let model = run(path, &src);
-        let (text, doc) = write(&model, &heritage(path));
-        assert_vertices_unique_and_used(&doc);
-        assert_outward(path, &doc);
-        assert_valid(path, &text, &doc);
-    }
 }

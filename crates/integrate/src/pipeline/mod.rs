@@ -11,29 +11,24 @@
 
 use std::time::Instant;
 
-use facade::classify::{Method, Training};
-use facade::rectify::ManualLines;
-use image::{DynamicImage, GrayImage, RgbImage};
+use image::RgbImage;
 use plan::ParsedPlan;
 use plan::scale::ScaleNote;
 use rayon::prelude::*;
 
 use crate::estimate::Estimate;
-use crate::gothic::{GothicFacadeEstimate, GothicPhoto, estimate_gothic};
-use crate::photo::{FacadeEstimate, FacadePhoto, crop, estimate_facade};
-use crate::project::{FacadeEntry, GothicEntry, Project, TrainingSource, gothic_element_entry};
-use crate::textures::{MAX_SAMPLE_SIDE, Texture, box_size, power_of_two, safe_stem, wall_samples};
-use crate::{Inputs, IntegrateError, integrate};
+use crate::gothic::GothicFacadeEstimate;
+use crate::photo::{FacadeEstimate, crop};
+use crate::project::Project;
+use crate::textures::{MAX_SAMPLE_SIDE, Texture, box_size, power_of_two, wall_samples};
+use crate::{Inputs, integrate};
 
-/// The files a project names (the plan, photos, TRAINING.json, LINES.json), read by the
-/// caller: from a folder (`castellan reconstruct`), a confined project store (`serve`), or
-/// memory (tests). Errors are the caller's message (the file, the pixel budget, …).
-pub trait Files: Sync {
-    /// The image `name` (a path relative to PROJECT.toml), decoded.
-    fn image(&self, name: &str) -> Result<DynamicImage, String>;
-    /// The JSON file `name`, parsed; errors name `name:line:column`.
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String>;
-}
+mod interface;
+mod photos;
+
+use interface::at;
+pub use interface::{Files, Options, Overlay, Picture, PipelineError, encode_png};
+pub use photos::{estimate_gothic_photo, estimate_photo, training};
 
 /// The steps of [`reconstruct`], in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,41 +79,6 @@ pub enum Progress {
 /// How many [`Progress::Step`]s [`reconstruct`] reports for `project`.
 pub fn steps(project: &Project) -> u64 {
     4 + (project.facades.len() + project.gothics.len()) as u64
-}
-
-/// Why a reconstruction failed: the PROJECT.toml entry at fault and what went wrong.
-#[derive(Debug, thiserror::Error)]
-pub enum PipelineError {
-    #[error("{entry}: {message}")]
-    Entry { entry: String, message: String },
-    #[error(transparent)]
-    Integrate(#[from] IntegrateError),
-    /// A bug of castellan's, not of the input.
-    #[error("internal error: {0}")]
-    Internal(String),
-}
-
-fn at(entry: impl Into<String>) -> impl Fn(String) -> PipelineError {
-    let entry = entry.into();
-    move |message| PipelineError::Entry {
-        entry: entry.clone(),
-        message,
-    }
-}
-
-/// An overlay picture and the file name it is written under (relative to the output folder).
-pub struct Overlay {
-    pub name: String,
-    /// What it shows, for the report's legend; `None` for data pictures the report does not
-    /// show (the label image).
-    pub caption: Option<String>,
-    pub picture: Picture,
-}
-
-/// An overlay's pixels.
-pub enum Picture {
-    Rgb(RgbImage),
-    Grey(GrayImage),
 }
 
 /// The plan stage: the parsed drawing and its pictures.
@@ -187,197 +147,6 @@ pub fn corrected_stage(
         walls,
         svg,
     })
-}
-
-/// A façade's training boxes (photo pixels): inline in PROJECT.toml or its TRAINING.json; a
-/// TRAINING.json that is named but missing is an error naming the entry, in every command.
-pub fn training(entry: &FacadeEntry, files: &impl Files) -> Result<Training, String> {
-    match &entry.training {
-        TrainingSource::Inline(t) => Ok(t.clone()),
-        TrainingSource::File(name) => files.json(name, "a TRAINING.json"),
-    }
-}
-
-/// A photo and its optional rectification segments (LINES.json).
-fn photo_and_lines(
-    image: &str,
-    lines: Option<&str>,
-    files: &impl Files,
-) -> Result<(RgbImage, Option<ManualLines>), String> {
-    let photo = files.image(image)?.to_rgb8();
-    let lines = match lines {
-        Some(name) => Some(files.json(name, "a LINES.json")?),
-        None => None,
-    };
-    Ok((photo, lines))
-}
-
-fn facade_entry(i: usize, f: &FacadeEntry) -> String {
-    format!("[[facade]] #{} (image = \"{}\")", i + 1, f.image)
-}
-
-fn gothic_entry(i: usize, g: &GothicEntry) -> String {
-    format!("[[gothic]] #{} (image = \"{}\")", i + 1, g.image)
-}
-
-/// Chapter 3 on the project's façade photo `index` (§3.1.1–3.1.7), with its overlays.
-pub fn estimate_photo(
-    project: &Project,
-    index: usize,
-    files: &impl Files,
-    options: &Options,
-) -> Result<(FacadeEstimate, Vec<Overlay>), PipelineError> {
-    let seed = options.seed_for(project);
-    let f = &project.facades[index];
-    let entry = facade_entry(index, f);
-    let (image, lines) =
-        photo_and_lines(&f.image, f.lines.as_deref(), files).map_err(at(entry.clone()))?;
-    let training = training(f, files).map_err(at(entry.clone()))?;
-    let estimate = estimate_facade(&FacadePhoto {
-        name: &f.image,
-        image: &image,
-        training: &training,
-        lines: lines.as_ref(),
-        rectified: f.rectified,
-        bbox: f.bbox,
-        metres_per_pixel: f.metres_per_pixel,
-        seed,
-        classifier: options.classifier,
-        fixes: &f.fix,
-    })
-    .map_err(|e| at(entry)(e.to_string()))?;
-    let overlays = facade_overlays(&estimate, &image);
-    Ok((estimate, overlays))
-}
-
-/// §3.1.1's line families, the classifier's probabilities and the façade tree over the
-/// rectified photo, and its label image.
-fn facade_overlays(e: &FacadeEstimate, photo: &RgbImage) -> Vec<Overlay> {
-    let stem = safe_stem(&e.name);
-    let labels = e.model.labels();
-    let mut out = lines_overlay(&e.name, &stem, photo, e.rectification.as_ref());
-    out.push(Overlay {
-        name: format!("overlays/{stem}_pixels.png"),
-        caption: Some(format!(
-            "{}: the pixel classifier's class probabilities before the façade search (§3.1.4; \
-             {}, blended where unsure)",
-            e.name,
-            facade::draw::LEGEND
-        )),
-        picture: Picture::Rgb(facade::draw::probability_overlay(
-            &e.rectified,
-            &e.log_likelihoods,
-        )),
-    });
-    out.push(Overlay {
-        name: format!("overlays/{stem}_facade.png"),
-        caption: Some(format!(
-            "{}: the façade tree over the rectified photo (§3.1.7; {})",
-            e.name,
-            facade::draw::LEGEND
-        )),
-        picture: Picture::Rgb(facade::draw::label_overlay(&e.rectified, &labels)),
-    });
-    // Issue 22: the index image a program reads, and its view a person reads.
-    let view = facade::draw::labels_view(e.model.width, e.model.height, &labels);
-    if let Some(grey) = GrayImage::from_raw(e.model.width, e.model.height, labels) {
-        out.push(Overlay {
-            name: format!("overlays/{stem}_labels.png"),
-            caption: None,
-            picture: Picture::Grey(grey),
-        });
-        out.push(Overlay {
-            name: format!("overlays/{stem}_labels.view.png"),
-            caption: None,
-            picture: Picture::Rgb(view),
-        });
-    }
-    out
-}
-
-/// Chapter 4 on the project's Gothic photo `index`, with its overlays.
-pub fn estimate_gothic_photo(
-    project: &Project,
-    index: usize,
-    files: &impl Files,
-) -> Result<(GothicFacadeEstimate, Vec<Overlay>), PipelineError> {
-    let g = &project.gothics[index];
-    let entry = gothic_entry(index, g);
-    let (image, lines) =
-        photo_and_lines(&g.image, g.lines.as_deref(), files).map_err(at(entry.clone()))?;
-    let estimate = estimate_gothic(&GothicPhoto {
-        name: &g.image,
-        image: &image,
-        bbox: g.bbox,
-        lines: lines.as_ref(),
-        rectified: g.rectified,
-        corrections: &g.elements,
-    })
-    .map_err(|e| match e {
-        // Named by the correction itself: `[[gothic]] #1 element #2 (image = …): …`.
-        IntegrateError::GothicCorrection { error, .. } => PipelineError::Entry {
-            entry: gothic_element_entry(index, error.index, &g.image),
-            message: error.problem,
-        },
-        e => at(entry)(e.to_string()),
-    })?;
-    let stem = safe_stem(&estimate.name);
-    let mut overlays = lines_overlay(
-        &estimate.name,
-        &stem,
-        &image,
-        estimate.rectification.as_ref(),
-    );
-    overlays.push(Overlay {
-        name: format!("overlays/{stem}_gothic.png"),
-        caption: Some(format!(
-            "{}: arches, groups, nesting and stones (ch. 4) — {}",
-            estimate.name,
-            facade::gothic::draw::LEGEND
-        )),
-        picture: Picture::Rgb(facade::gothic::draw::overlay(
-            &estimate.facade,
-            &estimate.estimate,
-            Some(&estimate.masonry),
-        )),
-    });
-    Ok((estimate, overlays))
-}
-
-/// The line families and vanishing points of a rectified photo (§3.1.1), if it was rectified.
-fn lines_overlay(
-    image: &str,
-    stem: &str,
-    photo: &RgbImage,
-    rectification: Option<&facade::rectify::Rectification>,
-) -> Vec<Overlay> {
-    rectification
-        .map(|r| Overlay {
-            name: format!("overlays/{stem}_lines.png"),
-            caption: Some(format!(
-                "{image}: line families and vanishing points (§3.1.1) — {}",
-                facade::rectify::OVERLAY_LEGEND
-            )),
-            picture: Picture::Rgb(facade::rectify::draw_overlay(photo, r)),
-        })
-        .into_iter()
-        .collect()
-}
-
-/// Settings of a reconstruction beyond the project's.
-#[derive(Debug, Clone, Default)]
-pub struct Options {
-    /// Overrides the project's seed (the classifier's sampling, the program's randomness).
-    pub seed: Option<u64>,
-    /// The per-pixel classifier of the façade and Gothic photos (§3.1.3–3.1.4).
-    pub classifier: Method,
-}
-
-impl Options {
-    /// The seed of a run on `project`: this override, else the project's, else 0.
-    pub fn seed_for(&self, project: &Project) -> u64 {
-        self.seed.or(project.seed).unwrap_or(0)
-    }
 }
 
 /// Everything a reconstruction produced.
@@ -676,30 +445,6 @@ fn export(
         terminals: stats.terminals,
         textures: pngs,
     })
-}
-
-/// PNG bytes of an image (the encoding every output of castellan uses, the binary's too).
-pub fn encode_png<P, C>(image: &image::ImageBuffer<P, C>) -> Result<Vec<u8>, String>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    let mut bytes = Vec::new();
-    image
-        .write_with_encoder(image::codecs::png::PngEncoder::new(&mut bytes))
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
-}
-
-impl Picture {
-    /// The picture as PNG.
-    pub fn png(&self) -> Result<Vec<u8>, String> {
-        match self {
-            Picture::Rgb(img) => encode_png(img),
-            Picture::Grey(img) => encode_png(img),
-        }
-    }
 }
 
 impl Reconstruction {
