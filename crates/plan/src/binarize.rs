@@ -73,6 +73,13 @@ pub fn binarize(grey: &GrayImage, level: u8) -> GrayImage {
     GrayImage::from_raw(grey.width(), grey.height(), raw).expect("w × h pixels")
 }
 
+/// The size in pixels under which a region of `img` is a speck (§5.1.2 steps (2) and (5)):
+/// `min_region` of the image (0.0005 in the text), at least one pixel.
+pub fn speck_pixels(img: &GrayImage, min_region: f64) -> usize {
+    let total = (img.width() as usize) * (img.height() as usize);
+    ((total as f64) * min_region).ceil().max(1.0) as usize
+}
+
 /// Sets every pixel of the components smaller than `min` (label 0 is background) to `to`.
 fn remove_small(img: &mut GrayImage, c: &Components, min: usize, to: u8) -> usize {
     let small: Vec<bool> = c
@@ -119,8 +126,7 @@ pub fn preprocess_clean(
 ) -> (GrayImage, PreStats) {
     let level = threshold_level(grey);
     let mut img = binarize(grey, level);
-    let total = (img.width() as usize) * (img.height() as usize);
-    let min = ((total as f64) * min_region).ceil().max(1.0) as usize;
+    let min = speck_pixels(&img, min_region);
     let mut stats = PreStats {
         threshold: level,
         ..Default::default()
@@ -169,8 +175,7 @@ pub fn preprocess_clean(
 /// (2)–(5) and the castle kept alone, as a thresholded drawing is. `level` is recorded as the
 /// threshold (P(wall) > 0.5 reads as 128).
 pub fn preprocess_learned(mask: GrayImage, min_region: f64) -> (GrayImage, PreStats) {
-    let total = (mask.width() as usize) * (mask.height() as usize);
-    let min = ((total as f64) * min_region).ceil().max(1.0) as usize;
+    let min = speck_pixels(&mask, min_region);
     let mut stats = PreStats {
         threshold: 128,
         ..Default::default()

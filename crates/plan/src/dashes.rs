@@ -34,9 +34,7 @@ pub fn link_dashes(
     let (w, h) = (img.width() as usize, img.height() as usize);
     let ink = components(img, 255, Connectivity::Eight);
     let marks: Vec<Stroke> = strokes(&ink, w, |l| {
-        let b = ink.bbox[l];
-        let on_border = b[0] == 0 || b[1] == 0 || b[2] as usize == w - 1 || b[3] as usize == h - 1;
-        (2..max_size).contains(&ink.sizes[l]) && !on_border
+        (2..max_size).contains(&ink.sizes[l]) && !ink.touches_border(l, w, h)
     })
     .into_iter()
     .filter(|s| {

@@ -76,12 +76,11 @@ pub fn close_gates(img: &mut GrayImage, radius: u8, min_enclosed: usize) -> usiz
 
 /// The paper (0) pixels whose 4-connected region of paper touches the image's border.
 fn outside(img: &GrayImage) -> Vec<bool> {
-    let (w, h) = (img.width(), img.height());
+    let (w, h) = (img.width() as usize, img.height() as usize);
     let paper = components(img, 0, Connectivity::Four);
-    let mut border = vec![false; paper.sizes.len()];
-    for (l, b) in paper.bbox.iter().enumerate().skip(1) {
-        border[l] = b[0] == 0 || b[1] == 0 || b[2] + 1 == w || b[3] + 1 == h;
-    }
+    let border: Vec<bool> = (0..paper.sizes.len())
+        .map(|l| paper.touches_border(l, w, h))
+        .collect();
     paper.labels.iter().map(|&l| border[l as usize]).collect()
 }
 

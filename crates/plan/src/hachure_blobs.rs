@@ -29,19 +29,8 @@ pub fn drop_hachure_blobs(
         return 0;
     }
     let paper = components(img, 0, Connectivity::Four);
-    let speck: Vec<bool> = paper
-        .sizes
-        .iter()
-        .zip(&paper.bbox)
-        .enumerate()
-        .map(|(l, (&size, b))| {
-            l > 0
-                && size <= max_speck
-                && b[0] > 0
-                && b[1] > 0
-                && (b[2] as usize) + 1 < w
-                && (b[3] as usize) + 1 < h
-        })
+    let speck: Vec<bool> = (0..paper.sizes.len())
+        .map(|l| l > 0 && paper.sizes[l] <= max_speck && !paper.touches_border(l, w, h))
         .collect();
     let to_paper = distance_to_background(img, Norm::LInf);
     // Per pixel, as the three channels of one integral image: a speck pixel, the mark of a

@@ -101,6 +101,7 @@ pub struct Options {
     pub inner_ward_towers: bool,
     /// Plug gates and doors wider than `close_gaps` bridges where that encloses a ward or a
     /// room ([`gates::close_gates`]; addition to §5.1.2, off: the text's open enclosures).
+    /// Runs only after `close_gaps`, whose wall thickness it uses.
     pub close_gates: bool,
     /// Drop ink regions without a room of their own that are not the castle (letters,
     /// numbers, north arrows; [`binarize::drop_marks`]), after the gaps are closed.
@@ -519,9 +520,8 @@ fn parse_grey(
             // Gates up to about twice the wall's thickness (probe radius T; 0.75 T and 1.5 T
             // were measured, docs/plan.md "Gates"), when plugging them encloses more than a
             // speck of step (2).
-            let total = (w as usize) * (h as usize);
-            let min = ((total as f64) * opts.min_region).ceil().max(1.0) as usize;
             let radius = t.ceil().min(f64::from(gates::MAX_RADIUS)) as u8;
+            let min = binarize::speck_pixels(&bin, opts.min_region);
             pre.gate_pixels = gates::close_gates(&mut bin, radius, min);
         }
     }

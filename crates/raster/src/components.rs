@@ -34,6 +34,15 @@ pub struct Components {
     pub bbox: Vec<[u32; 4]>,
 }
 
+impl Components {
+    /// Whether region `label`'s box touches the border of the `width` × `height` image it was
+    /// labelled in (the empty box of label 0 does not).
+    pub fn touches_border(&self, label: usize, width: usize, height: usize) -> bool {
+        let [x0, y0, x1, y1] = self.bbox[label].map(|v| v as usize);
+        self.sizes[label] > 0 && (x0 == 0 || y0 == 0 || x1 + 1 == width || y1 + 1 == height)
+    }
+}
+
 /// The regions of the pixels of `img` equal to `value`.
 pub fn components(img: &GrayImage, value: u8, conn: Connectivity) -> Components {
     let raw = img.as_raw();
@@ -270,6 +279,23 @@ mod tests {
         let raw = img.as_raw();
         let same = components_where(5, 4, Connectivity::Four, |i| raw[i] == 0);
         assert_eq!(same, paper);
+    }
+
+    #[test]
+    fn regions_touch_the_border_where_their_box_does() {
+        // The paper of a ring: the outside touches every edge, the hole none; label 0 never.
+        let img = crate::literal::mask(&[".....", ".###.", ".#.#.", ".###.", "....."]);
+        let paper = components(&img, 0, Connectivity::Four);
+        assert_eq!(paper.sizes, vec![0, 16, 1]);
+        let touches: Vec<bool> = (0..3).map(|l| paper.touches_border(l, 5, 5)).collect();
+        assert_eq!(touches, vec![false, true, false]);
+        // A region on the last column only.
+        let ink = components(
+            &crate::literal::mask(&["....#", "....."]),
+            255,
+            Connectivity::Eight,
+        );
+        assert!(ink.touches_border(1, 5, 2));
     }
 
     #[test]

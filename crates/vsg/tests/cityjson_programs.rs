@@ -3,7 +3,7 @@
 //! read back (unique vertices, outward solids) and passed through both validators (cjval and
 //! cjio; see `tests/cityjson.rs` for when cjio skips).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use serde_json::Value;
@@ -24,26 +24,14 @@ mod cjval_check;
 #[path = "support/venv.rs"]
 mod venv;
 
-/// Imports resolve inside `library/`.
-struct LibraryDir(PathBuf);
-
-impl vsg::import::Resolver for LibraryDir {
-    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
-        std::fs::read_to_string(self.0.join(path))
-            .map(|t| (path.to_string(), t))
-            .map_err(|e| e.to_string())
-    }
-}
+#[path = "support/dir.rs"]
+mod dir;
+use dir::Dir;
 
 fn run(name: &str, src: &str) -> Model {
     let library = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library");
-    vsg::run_with(
-        name,
-        src,
-        &vsg::RunOptions::default(),
-        &mut LibraryDir(library),
-    )
-    .unwrap_or_else(|e| panic!("{}", e.render(name, src)))
+    vsg::run_with(name, src, &vsg::RunOptions::default(), &mut Dir(library))
+        .unwrap_or_else(|e| panic!("{}", e.render(name, src)))
 }
 
 /// A castle like the Coucy demo's `model.vsg` (`castellan demo`): the library's round towers,

@@ -17,6 +17,10 @@ use vsg::tree::{Appearance, Model, NodeState};
 mod tree;
 use tree::{Tree, at, prim};
 
+#[path = "support/dir.rs"]
+mod dir;
+use dir::Dir;
+
 const HOW: &str = "install Node.js 20+ and run `npm ci --prefix tools/gltf-validator` \
                    from the repository root";
 
@@ -254,17 +258,6 @@ fn example_programs_are_valid() {
     }
 }
 
-/// Imports in the library resolve inside `library/`.
-struct LibraryDir(PathBuf);
-
-impl vsg::import::Resolver for LibraryDir {
-    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
-        std::fs::read_to_string(self.0.join(path))
-            .map(|t| (path.to_string(), t))
-            .map_err(|e| e.to_string())
-    }
-}
-
 #[test]
 fn library_programs_with_unique_shapes_and_imports_are_valid() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library");
@@ -274,7 +267,7 @@ fn library_programs_with_unique_shapes_and_imports_are_valid() {
             name,
             &src,
             &vsg::RunOptions::default(),
-            &mut LibraryDir(dir.clone()),
+            &mut Dir(dir.clone()),
         )
         .unwrap_or_else(|e| panic!("{}", e.render(name, &src)));
         assert!(!model.unique.is_empty() || name == "round_tower.vsg");

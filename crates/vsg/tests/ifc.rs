@@ -8,7 +8,7 @@
 //! Python 3 and its `venv` the IfcOpenShell checks skip with a message, unless `CI` is set.
 
 use std::collections::{BTreeMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use nalgebra::{Isometry3, Vector3};
@@ -27,6 +27,10 @@ mod ifcopenshell;
 #[path = "support/venv.rs"]
 mod venv;
 use ifcopenshell::check;
+
+#[path = "support/dir.rs"]
+mod dir;
+use dir::Dir;
 
 /// Instances of `entity` (upper case, as written) in the STEP text.
 fn count(ifc: &str, entity: &str) -> usize {
@@ -482,17 +486,6 @@ fn numbers_that_are_not_finite_are_errors_not_files() {
         .attributes
         .insert("height".into(), Attribute::Number(f64::NEG_INFINITY));
     assert!(to_ifc(&castle(), &h, &ExportOptions::default()).is_err());
-}
-
-/// Imports resolve in a directory (`library/`, or the demo's output).
-struct Dir(PathBuf);
-
-impl vsg::import::Resolver for Dir {
-    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
-        std::fs::read_to_string(self.0.join(path))
-            .map(|t| (path.to_string(), t))
-            .map_err(|e| e.to_string())
-    }
 }
 
 /// Runs `path`, writes it as IFC, prints counts, size and write time, checks it in

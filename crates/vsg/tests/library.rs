@@ -4,24 +4,16 @@
 use std::path::{Path, PathBuf};
 
 use vsg::RunOptions;
-use vsg::import::Resolver;
 use vsg::shape::{Primitive, ShapeType, Tessellation};
 use vsg::stats::Stats;
 use vsg::tree::Solid;
 
+#[path = "support/dir.rs"]
+mod dir;
+use dir::Dir;
+
 fn library() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../library")
-}
-
-/// Imports resolve inside `library/`, as `castellan vsg run` does beside the importing file.
-struct Dir(PathBuf);
-
-impl Resolver for Dir {
-    fn load(&mut self, _from: &str, path: &str) -> Result<(String, String), String> {
-        std::fs::read_to_string(self.0.join(path))
-            .map(|t| (path.to_string(), t))
-            .map_err(|e| e.to_string())
-    }
 }
 
 fn run(file: &str, overrides: &[(&str, f64)]) -> (vsg::Model, Stats) {
