@@ -22,6 +22,7 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         dashes: !args.no_dashes,
         inner_ward_towers: !args.no_inner_towers,
         close_gates: !args.no_gates,
+        trim_ink: args.trim_ink,
         ink: args.ink,
         ..Default::default()
     };
@@ -191,6 +192,12 @@ pub struct PlanArgs {
     /// room; see docs/plan.md, "Gates").
     #[arg(long)]
     pub no_gates: bool,
+    /// With the learned ink, give the walls' blur beyond the drawn ink back to the rooms,
+    /// courtyards and surroundings beside them after the parse, so that the labels and walls
+    /// follow the drawing (off by default: the model then agrees with the plan less; see
+    /// docs/plan.md, "Walls trimmed to the drawing").
+    #[arg(long)]
+    pub trim_ink: bool,
 }
 
 #[cfg(test)]
@@ -325,6 +332,13 @@ mod flag_tests {
         assert!(plan_args(&["--no-gates"]).unwrap().no_gates);
         assert!(plan_args(&["--no-gates", "yes"]).is_err());
         assert!(plan_args(&["--gates"]).is_err());
+    }
+
+    #[test]
+    fn plan_walls_are_trimmed_only_when_asked() {
+        assert!(!plan_args(&[]).unwrap().trim_ink);
+        assert!(plan_args(&["--trim-ink"]).unwrap().trim_ink);
+        assert!(plan_args(&["--trim-ink", "yes"]).is_err());
     }
 
     #[test]

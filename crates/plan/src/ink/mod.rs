@@ -11,6 +11,7 @@ pub mod model;
 pub mod paint;
 pub mod refine;
 pub mod train;
+pub mod trim;
 
 pub use model::WallInk;
 
