@@ -125,7 +125,20 @@ fn montargis_towers_with_a_room_or_a_bulge_are_all_in_the_model() {
     // 6 bulges and 6 tower rooms with the gates open; with them plugged (plan::gates) 5
     // bulges and 7 tower rooms.
     assert!(bulges >= 5, "the plan finds Montargis's bulge towers");
-    assert!(solid >= 1 && solid <= bulges);
+    // Solid towers are the bulges and the round towers the model found bare (issue 25,
+    // `structures::bare`), each said so in its provenance.
+    let bare = towers
+        .iter()
+        .filter(|s| {
+            s["provenance"]["footprint"]["step"]
+                .as_str()
+                .is_some_and(|t| t.contains("no other structure covers"))
+        })
+        .count();
+    assert!(
+        solid >= 1 && solid <= bulges + bare,
+        "{solid} solid, {bulges} bulges, {bare} bare"
+    );
     assert!(
         towers.len() >= counted - neither,
         "{} towers in the model, {counted} counted on the plan, {neither} neither room nor bulge",

@@ -5,6 +5,7 @@
 //! inner wall ([`walls`]). Each structure has a role ([`roles`]: keep, tower, range, room,
 //! curtain, wall). Heights are the class defaults of §5.3 until a façade says otherwise.
 
+mod bare;
 mod blocks;
 mod drawn;
 mod roles;
@@ -161,6 +162,70 @@ fn gatehouses(
             }
         })
         .collect()
+}
+
+/// A tower found on the outline rather than as a room (a bulge of the curtain, or a round tower
+/// the other structures leave bare): a solid cylinder on its circle `b` (plan pixels), its
+/// wall as thick as the curtain `curtain_px` (at most half the radius); a keep is taller.
+#[allow(clippy::too_many_arguments)]
+fn round_tower(
+    b: &plan::bulges::BulgeTower,
+    id: String,
+    role: Role,
+    step: String,
+    curtain_px: Option<f64>,
+    s: f64,
+    heights: &Heights,
+    image: &str,
+) -> Structure {
+    let keep_here = role == Role::Keep;
+    let wall_px = curtain_px.unwrap_or(b.radius / 3.0).min(b.radius / 2.0);
+    let mut provenance = BTreeMap::new();
+    provenance.insert("footprint".to_string(), Provenance::new(image, step, None));
+    provenance.insert(
+        "wall_thickness".to_string(),
+        Provenance::new(
+            image,
+            match curtain_px {
+                Some(_) => "§5.1.4 median thickness of the outer walls (the curtain the tower studs), at most half the radius; inside it, fill",
+                None => "no outer wall: a third of the radius; inside it, fill",
+            },
+            None,
+        ),
+    );
+    let factor = if keep_here { KEEP_OVER_TOWERS } else { 1.0 };
+    provenance.insert(
+        "height".to_string(),
+        Provenance::new(
+            "default",
+            if keep_here {
+                format!(
+                    "the keep: {KEEP_OVER_TOWERS} × the §5.3 class height of {}",
+                    Label::TowerWall.name()
+                )
+            } else {
+                format!("§5.3 class height of {}", Label::TowerWall.name())
+            },
+            None,
+        ),
+    );
+    Structure {
+        children: hierarchy(&id, Kind::SolidCylindrical),
+        id,
+        label: Label::TowerWall,
+        role,
+        kind: Kind::SolidCylindrical,
+        footprint: Footprint::Circle {
+            center: [b.center[0] * s, b.center[1] * s],
+            radius: b.radius * s,
+        },
+        height: factor * heights.of(Label::TowerWall),
+        wall_thickness: wall_px * s,
+        facades: Vec::new(),
+        roof: None,
+        crenellated: None,
+        provenance,
+    }
 }
 
 /// A room whose boundary §5.1.5 would not fit (a D-shaped tower, a chapel with its apse, a
@@ -461,63 +526,13 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
     for (k, (bi, b)) in bulges.iter().enumerate() {
         let keep_here = keep == Some(rooms.len() + k);
         let role = if keep_here { Role::Keep } else { Role::Tower };
+        let step = format!(
+            "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge, solid"
+        );
         let id = next_id(role.name());
-        let wall_px = curtain_px.unwrap_or(b.radius / 3.0).min(b.radius / 2.0);
-        let mut provenance = BTreeMap::new();
-        provenance.insert(
-            "footprint".to_string(),
-            Provenance::new(
-                image,
-                format!(
-                    "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge, solid"
-                ),
-                None,
-            ),
-        );
-        provenance.insert(
-            "wall_thickness".to_string(),
-            Provenance::new(
-                image,
-                match curtain_px {
-                    Some(_) => "§5.1.4 median thickness of the outer walls (the curtain the tower studs), at most half the radius; inside it, fill",
-                    None => "no outer wall: a third of the radius; inside it, fill",
-                },
-                None,
-            ),
-        );
-        let factor = if keep_here { KEEP_OVER_TOWERS } else { 1.0 };
-        provenance.insert(
-            "height".to_string(),
-            Provenance::new(
-                "default",
-                if keep_here {
-                    format!(
-                        "the keep: {KEEP_OVER_TOWERS} × the §5.3 class height of {}",
-                        Label::TowerWall.name()
-                    )
-                } else {
-                    format!("§5.3 class height of {}", Label::TowerWall.name())
-                },
-                None,
-            ),
-        );
-        out.push(Structure {
-            children: hierarchy(&id, Kind::SolidCylindrical),
-            id,
-            label: Label::TowerWall,
-            role,
-            kind: Kind::SolidCylindrical,
-            footprint: Footprint::Circle {
-                center: [b.center[0] * s, b.center[1] * s],
-                radius: b.radius * s,
-            },
-            height: factor * heights.of(Label::TowerWall),
-            wall_thickness: wall_px * s,
-            facades: Vec::new(),
-            roof: None,
-            crenellated: None,
-            provenance,
-        });
+        out.push(round_tower(
+            b, id, role, step, curtain_px, s, &heights, image,
+        ));
     }
     for gate in gatehouses(&out, &heights, image, &mut next_id) {
         out.push(gate);
@@ -599,6 +614,25 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             crenellated: None,
             provenance,
         });
+    }
+    // Issue 25: round towers of the outer wall that nothing above covers (`bare`).
+    if let Some(t) = curtain_px {
+        for (k, b) in bare::towers(plan, &out, s, t).iter().enumerate() {
+            let step = format!(
+                "round tower {k} of the outer wall that no other structure covers (issue 25): circle fitted to the edge of the bare wall towards the surroundings, solid"
+            );
+            let id = next_id(Role::Tower.name());
+            out.push(round_tower(
+                b,
+                id,
+                Role::Tower,
+                step,
+                curtain_px,
+                s,
+                &heights,
+                image,
+            ));
+        }
     }
     out
 }
