@@ -295,9 +295,6 @@ mod tests {
             }
         }
         ParsedPlan {
-            width: w,
-            height: h,
-            vertices: vec![],
             edges: (0..edges)
                 .map(|_| plan::PlanEdge {
                     from: 0,
@@ -308,15 +305,8 @@ mod tests {
                     thickness: 3.0,
                 })
                 .collect(),
-            faces: vec![],
             labels,
-            walls: plan::thin::Mask::new(w, h),
-            towers: 0,
-            bulge_towers: vec![],
-            spurs: vec![],
-            pre: Default::default(),
-            warnings: vec![],
-            scale_bar: None,
+            ..ParsedPlan::empty(w, h)
         }
     }
 

@@ -232,6 +232,26 @@ pub struct ParsedPlan {
 }
 
 impl ParsedPlan {
+    /// A `width` × `height` plan of nothing: no graph, faces, walls or towers, every pixel
+    /// the surroundings. The one start for plans built by hand (tests, callers' fixtures).
+    pub fn empty(width: u32, height: u32) -> ParsedPlan {
+        ParsedPlan {
+            width,
+            height,
+            vertices: Vec::new(),
+            edges: Vec::new(),
+            faces: Vec::new(),
+            labels: vec![Label::CastleSurroundings as u8; width as usize * height as usize],
+            walls: Mask::new(width, height),
+            towers: 0,
+            bulge_towers: Vec::new(),
+            spurs: Vec::new(),
+            pre: binarize::PreStats::default(),
+            warnings: Vec::new(),
+            scale_bar: None,
+        }
+    }
+
     /// The label at pixel (x, y).
     pub fn label_at(&self, x: u32, y: u32) -> Label {
         Label::ALL[self.labels[(y * self.width + x) as usize] as usize]

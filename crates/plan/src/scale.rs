@@ -226,21 +226,7 @@ mod tests {
     use crate::scalebar::ScaleBar;
 
     fn plan_with_outer_walls(thicknesses: &[f64]) -> ParsedPlan {
-        let mut p = ParsedPlan {
-            width: 400,
-            height: 300,
-            vertices: vec![],
-            edges: vec![],
-            faces: vec![],
-            labels: vec![0; 400 * 300],
-            walls: crate::thin::Mask::new(400, 300),
-            towers: 0,
-            bulge_towers: vec![],
-            spurs: vec![],
-            pre: Default::default(),
-            warnings: vec![],
-            scale_bar: None,
-        };
+        let mut p = ParsedPlan::empty(400, 300);
         for &t in thicknesses {
             p.edges.push(crate::PlanEdge {
                 from: 0,

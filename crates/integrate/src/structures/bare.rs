@@ -193,19 +193,9 @@ mod tests {
             }
         }
         ParsedPlan {
-            width: W,
-            height: H,
-            vertices: vec![],
-            edges: vec![],
-            faces: vec![],
             labels,
             walls,
-            towers: 0,
-            bulge_towers: vec![],
-            spurs: vec![],
-            pre: Default::default(),
-            warnings: vec![],
-            scale_bar: None,
+            ..ParsedPlan::empty(W, H)
         }
     }
 

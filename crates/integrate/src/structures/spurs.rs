@@ -179,9 +179,6 @@ mod tests {
     fn plan_with(spurs: Vec<Spur>) -> ParsedPlan {
         let (w, h) = (120u32, 80u32);
         ParsedPlan {
-            width: w,
-            height: h,
-            vertices: vec![],
             edges: vec![plan::PlanEdge {
                 from: 0,
                 to: 0,
@@ -190,15 +187,8 @@ mod tests {
                 fit: None,
                 thickness: 6.0,
             }],
-            faces: vec![],
-            labels: vec![Label::CastleSurroundings as u8; (w * h) as usize],
-            walls: plan::thin::Mask::new(w, h),
-            towers: 0,
-            bulge_towers: vec![],
             spurs,
-            pre: Default::default(),
-            warnings: vec![],
-            scale_bar: None,
+            ..ParsedPlan::empty(w, h)
         }
     }
 
