@@ -12,8 +12,15 @@ use crate::output::Outputs;
 
 use crate::images::png;
 
-pub fn run(args: &PlanArgs) -> Result<()> {
-    let options = plan::Options {
+/// The parser's options from the command line; `--trim-ink` trims the learned ink only, so
+/// with `--ink rules` it is refused rather than silently doing nothing.
+fn options(args: &PlanArgs) -> Result<plan::Options> {
+    if args.trim_ink && args.ink == plan::ink::InkMethod::Rules {
+        return Err(anyhow!(
+            "--trim-ink trims the learned wall ink; it does nothing with --ink rules, leave one of them out"
+        ));
+    }
+    Ok(plan::Options {
         thin_lines: args
             .thin_lines
             .unwrap_or(plan::Options::default().thin_lines),
@@ -25,7 +32,11 @@ pub fn run(args: &PlanArgs) -> Result<()> {
         trim_ink: args.trim_ink,
         ink: args.ink,
         ..Default::default()
-    };
+    })
+}
+
+pub fn run(args: &PlanArgs) -> Result<()> {
+    let options = options(args)?;
     let image = match (&args.batch, &args.image) {
         (Some(dir), _) => {
             return crate::plan_batch::run(dir, &args.output, args.metres_per_pixel, &options);
@@ -339,6 +350,18 @@ mod flag_tests {
         assert!(!plan_args(&[]).unwrap().trim_ink);
         assert!(plan_args(&["--trim-ink"]).unwrap().trim_ink);
         assert!(plan_args(&["--trim-ink", "yes"]).is_err());
+        assert!(
+            super::options(&plan_args(&["--trim-ink"]).unwrap())
+                .unwrap()
+                .trim_ink
+        );
+        // The rules' walls have no blur to trim: the pair is refused, not ignored.
+        let both = plan_args(&["--trim-ink", "--ink", "rules"]).unwrap();
+        let err = super::options(&both).unwrap_err().to_string();
+        assert!(
+            err.contains("--trim-ink") && err.contains("--ink rules"),
+            "{err}"
+        );
     }
 
     #[test]

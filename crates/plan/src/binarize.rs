@@ -36,7 +36,9 @@ pub struct PreStats {
     pub hachure_pixels: usize,
     /// Dashes and dots joined into lines ([`crate::dashes::link_dashes`]).
     pub dash_links: usize,
-    /// Wall pixels given back to the paper beside them ([`crate::ink::trim`], `trim_ink`).
+    /// Wall pixels given back to the paper beside them ([`crate::ink::trim`], `trim_ink`),
+    /// counted at the drawing's own size (the other counts are at the parse's, enlarged for
+    /// small drawings).
     pub trimmed_pixels: usize,
     /// Wall pixels added to plug gates ([`crate::gates::close_gates`]).
     pub gate_pixels: usize,

@@ -49,44 +49,37 @@ fn covered(plan: &ParsedPlan, built: &[Structure], s: f64) -> Vec<bool> {
     };
     for st in built {
         let f = &st.footprint;
-        if let Footprint::Wall { .. } = f {
-            for ([a, b], width) in f.pieces_with_widths() {
-                let (a, b, r) = ([a[0] / s, a[1] / s], [b[0] / s, b[1] / s], width / s / 2.0);
-                let lo = [a[0].min(b[0]) - r, a[1].min(b[1]) - r];
-                let hi = [a[0].max(b[0]) + r, a[1].max(b[1]) + r];
-                mark(lo, hi, &|p| segment_distance(p, a, b) <= r);
-            }
-            continue;
-        }
-        let (c, reach) = match f {
-            Footprint::Circle { center, radius } => ([center[0] / s, center[1] / s], radius / s),
-            Footprint::Rectangle { center, size, .. } => (
-                [center[0] / s, center[1] / s],
-                size[0].hypot(size[1]) / s / 2.0,
-            ),
-            Footprint::Blocks { blocks, .. } => {
-                let (lo, hi) = blocks.iter().fold(
-                    ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-                    |(lo, hi), b| {
-                        let e = b.size[0].hypot(b.size[1]) / 2.0;
-                        (
-                            [lo[0].min(b.center[0] - e), lo[1].min(b.center[1] - e)],
-                            [hi[0].max(b.center[0] + e), hi[1].max(b.center[1] + e)],
-                        )
-                    },
-                );
-                mark([lo[0] / s, lo[1] / s], [hi[0] / s, hi[1] / s], &|p| {
-                    contains(f, [p[0] * s, p[1] * s])
-                });
-                continue;
-            }
-            Footprint::Wall { .. } => unreachable!("walls are marked above"),
+        let inside = |p: [f64; 2]| contains(f, [p[0] * s, p[1] * s]);
+        // Each footprint's box in plan pixels, `lo` to `hi`.
+        let square = |c: &[f64; 2], reach: f64| {
+            let c = [c[0] / s, c[1] / s];
+            ([c[0] - reach, c[1] - reach], [c[0] + reach, c[1] + reach])
         };
-        mark(
-            [c[0] - reach, c[1] - reach],
-            [c[0] + reach, c[1] + reach],
-            &|p| contains(f, [p[0] * s, p[1] * s]),
-        );
+        match f {
+            Footprint::Wall { .. } => {
+                // Piece by piece: a run's box can hold the whole castle.
+                for ([a, b], width) in f.pieces_with_widths() {
+                    let (a, b, r) = ([a[0] / s, a[1] / s], [b[0] / s, b[1] / s], width / s / 2.0);
+                    let lo = [a[0].min(b[0]) - r, a[1].min(b[1]) - r];
+                    let hi = [a[0].max(b[0]) + r, a[1].max(b[1]) + r];
+                    mark(lo, hi, &|p| segment_distance(p, a, b) <= r);
+                }
+            }
+            Footprint::Circle { center, radius } => {
+                let (lo, hi) = square(center, radius / s);
+                mark(lo, hi, &inside);
+            }
+            Footprint::Rectangle { center, size, .. } => {
+                let (lo, hi) = square(center, size[0].hypot(size[1]) / s / 2.0);
+                mark(lo, hi, &inside);
+            }
+            Footprint::Blocks { blocks, .. } => {
+                for b in blocks {
+                    let (lo, hi) = square(&b.center, b.size[0].hypot(b.size[1]) / s / 2.0);
+                    mark(lo, hi, &inside);
+                }
+            }
+        }
     }
     out
 }

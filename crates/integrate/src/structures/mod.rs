@@ -164,20 +164,33 @@ fn gatehouses(
         .collect()
 }
 
+/// What every tower found on the outline is built in: the plan's scale (`s` model units per
+/// pixel), the class heights, the drawing's name for provenance, and the curtain's thickness
+/// (pixels) when the plan has outer walls.
+struct OutlineFrame<'a> {
+    s: f64,
+    heights: &'a Heights,
+    image: &'a str,
+    curtain_px: Option<f64>,
+}
+
 /// A tower found on the outline rather than as a room (a bulge of the curtain, or a round tower
 /// the other structures leave bare): a solid cylinder on its circle `b` (plan pixels), its
-/// wall as thick as the curtain `curtain_px` (at most half the radius); a keep is taller.
-#[allow(clippy::too_many_arguments)]
+/// wall as thick as the curtain (at most half the radius); a keep is taller. `step` says how it
+/// was found.
 fn round_tower(
     b: &plan::bulges::BulgeTower,
     id: String,
     role: Role,
     step: String,
-    curtain_px: Option<f64>,
-    s: f64,
-    heights: &Heights,
-    image: &str,
+    frame: &OutlineFrame,
 ) -> Structure {
+    let OutlineFrame {
+        s,
+        heights,
+        image,
+        curtain_px,
+    } = *frame;
     let keep_here = role == Role::Keep;
     let wall_px = curtain_px.unwrap_or(b.radius / 3.0).min(b.radius / 2.0);
     let mut provenance = BTreeMap::new();
@@ -523,6 +536,12 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             provenance,
         });
     }
+    let outline = OutlineFrame {
+        s,
+        heights: &heights,
+        image,
+        curtain_px,
+    };
     for (k, (bi, b)) in bulges.iter().enumerate() {
         let keep_here = keep == Some(rooms.len() + k);
         let role = if keep_here { Role::Keep } else { Role::Tower };
@@ -530,9 +549,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge, solid"
         );
         let id = next_id(role.name());
-        out.push(round_tower(
-            b, id, role, step, curtain_px, s, &heights, image,
-        ));
+        out.push(round_tower(b, id, role, step, &outline));
     }
     for gate in gatehouses(&out, &heights, image, &mut next_id) {
         out.push(gate);
@@ -622,16 +639,7 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                 "round tower {k} of the outer wall that no other structure covers (issue 25): circle fitted to the edge of the bare wall towards the surroundings, solid"
             );
             let id = next_id(Role::Tower.name());
-            out.push(round_tower(
-                b,
-                id,
-                Role::Tower,
-                step,
-                curtain_px,
-                s,
-                &heights,
-                image,
-            ));
+            out.push(round_tower(b, id, Role::Tower, step, &outline));
         }
     }
     out
