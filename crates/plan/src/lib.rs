@@ -45,6 +45,7 @@ mod castle_extent;
 pub mod clean;
 pub mod corrections;
 pub mod dashes;
+mod enlarged;
 pub mod eval;
 pub mod extrude;
 pub mod fit;
@@ -58,7 +59,9 @@ mod inner_towers;
 pub mod label;
 mod legend;
 mod measure;
+mod parsed;
 pub use measure::{PlanFace, Spur};
+pub use parsed::{ParsedPlan, PlanEdge};
 pub mod output;
 mod pixels;
 pub mod scale;
@@ -71,8 +74,6 @@ pub mod thin;
 
 use image::DynamicImage;
 
-use crate::fit::Fit;
-use crate::graph::Vertex;
 use crate::label::{Label, Scene};
 use crate::thin::Mask;
 
@@ -192,87 +193,6 @@ pub enum PlanError {
     Strokes(ink::refine::StrokeError),
 }
 
-/// A wall of the simplified graph.
-#[derive(Debug, Clone)]
-pub struct PlanEdge {
-    pub from: usize,
-    pub to: usize,
-    pub label: Label,
-    /// Skeleton pixels from `from` to `to`.
-    pub points: Vec<(u32, u32)>,
-    pub fit: Option<Fit>,
-    /// Wall thickness, pixels (twice the mean distance from the skeleton to the wall's edge).
-    pub thickness: f64,
-}
-
-/// The parsed drawing.
-#[derive(Debug, Clone)]
-pub struct ParsedPlan {
-    pub width: u32,
-    pub height: u32,
-    pub vertices: Vec<Vertex>,
-    pub edges: Vec<PlanEdge>,
-    pub faces: Vec<PlanFace>,
-    /// Label index of every pixel, row-major.
-    pub labels: Vec<u8>,
-    /// The cleaned binary drawing (1 = wall).
-    pub walls: Mask,
-    /// Number of towers found: groups of tower-wall edges (§5.1.6 (4)) joined at a vertex,
-    /// plus the bulge towers.
-    pub towers: usize,
-    /// Towers found as bulges of the castle's outline, without a room ([`bulges::find`]).
-    pub bulge_towers: Vec<bulges::BulgeTower>,
-    /// The wall chains §5.1.6 prunes ([`Spur`]).
-    pub spurs: Vec<Spur>,
-    pub pre: binarize::PreStats,
-    /// What the pipeline could not find (partial results say so here).
-    pub warnings: Vec<String>,
-    /// The drawn scale bar, when one was found ([`scalebar::find`]).
-    pub scale_bar: Option<scalebar::ScaleBar>,
-}
-
-impl ParsedPlan {
-    /// A `width` × `height` plan of nothing: no graph, faces, walls or towers, every pixel
-    /// the surroundings. The one start for plans built by hand (tests, callers' fixtures).
-    pub fn empty(width: u32, height: u32) -> ParsedPlan {
-        ParsedPlan {
-            width,
-            height,
-            vertices: Vec::new(),
-            edges: Vec::new(),
-            faces: Vec::new(),
-            labels: vec![Label::CastleSurroundings as u8; width as usize * height as usize],
-            walls: Mask::new(width, height),
-            towers: 0,
-            bulge_towers: Vec::new(),
-            spurs: Vec::new(),
-            pre: binarize::PreStats::default(),
-            warnings: Vec::new(),
-            scale_bar: None,
-        }
-    }
-
-    /// The label at pixel (x, y).
-    pub fn label_at(&self, x: u32, y: u32) -> Label {
-        Label::ALL[self.labels[(y * self.width + x) as usize] as usize]
-    }
-
-    /// The faces on each side of every edge (distinct, at most two), by edge index.
-    pub fn faces_of_edges(&self) -> Vec<Vec<usize>> {
-        let mut out = vec![Vec::new(); self.edges.len()];
-        for (fi, f) in self.faces.iter().enumerate() {
-            for &e in &f.edges {
-                if let Some(o) = out.get_mut(e)
-                    && !o.contains(&fi)
-                {
-                    o.push(fi);
-                }
-            }
-        }
-        out
-    }
-}
-
 /// Runs §5.1.2 – §5.1.6 on a drawing.
 ///
 /// Departure from §5.1.2, measured on real drawings (docs/plan.md): the text's 300-dpi scans
@@ -302,7 +222,7 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     } else {
         let big =
             image::imageops::resize(&grey, w * k, h * k, image::imageops::FilterType::Triangle);
-        shrink(
+        enlarged::shrink(
             parse_grey(&big, learned, opts, &mut Laps::default())?,
             k,
             w,
@@ -354,99 +274,6 @@ pub(crate) fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
     roots.sort_unstable();
     roots.dedup();
     roots.len()
-}
-
-/// Maps a plan parsed at `k` times the size back to the `w` × `h` input.
-fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
-    let kf = f64::from(k);
-    let inv = 1.0 / kf;
-    let at = |x: u32, y: u32| ((y * k + k / 2) * p.width + x * k + k / 2) as usize;
-    let mut labels = Vec::with_capacity((w * h) as usize);
-    let mut walls = Mask::new(w, h);
-    for y in 0..h {
-        for x in 0..w {
-            labels.push(p.labels[at(x, y)]);
-            walls.data[(y * w + x) as usize] = p.walls.data[at(x, y)];
-        }
-    }
-    let small = |v: f64| (v + 0.5) * inv - 0.5;
-    let edges = p
-        .edges
-        .into_iter()
-        .map(|e| {
-            let mut points: Vec<(u32, u32)> =
-                e.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
-            points.dedup();
-            PlanEdge {
-                points,
-                fit: e.fit.map(|f| f.scaled(inv)),
-                thickness: e.thickness * inv,
-                ..e
-            }
-        })
-        .collect();
-    let spurs = p
-        .spurs
-        .into_iter()
-        .map(|s| {
-            let mut points: Vec<(u32, u32)> =
-                s.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
-            points.dedup();
-            Spur {
-                points,
-                thickness: s.thickness * inv,
-            }
-        })
-        .collect();
-    let faces = p
-        .faces
-        .into_iter()
-        .map(|f| PlanFace {
-            // The enlarged drawing's rows through each small pixel's centre.
-            runs: f
-                .runs
-                .iter()
-                .filter(|r| r[0] % k == k / 2)
-                .map(|r| [r[0] / k, r[1].div_ceil(k), (r[2] + 1) / k])
-                .filter(|r| r[2] >= r[1] && r[2] > 0)
-                .map(|r| [r[0], r[1], r[2] - 1])
-                .filter(|r| r[2] >= r[1])
-                .collect(),
-            area: (f.area as f64 / (kf * kf)).round() as usize,
-            centroid: [small(f.centroid[0]), small(f.centroid[1])],
-            shape: f.shape.map(|s| s.scaled(inv)),
-            ..f
-        })
-        .collect();
-    ParsedPlan {
-        width: w,
-        height: h,
-        vertices: p
-            .vertices
-            .into_iter()
-            .map(|v| Vertex {
-                x: small(v.x),
-                y: small(v.y),
-            })
-            .collect(),
-        edges,
-        faces,
-        labels,
-        walls,
-        towers: p.towers,
-        bulge_towers: p
-            .bulge_towers
-            .into_iter()
-            .map(|t| bulges::BulgeTower {
-                center: [small(t.center[0]), small(t.center[1])],
-                radius: t.radius * inv,
-            })
-            .collect(),
-        spurs,
-        pre: p.pre,
-        warnings: p.warnings,
-        scale_bar: p.scale_bar,
-    }
 }
 
 /// The learned wall ink's mask (255 = wall) of `grey` at `k` times its size, refined by the
