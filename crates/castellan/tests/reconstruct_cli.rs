@@ -95,7 +95,13 @@ fn demo_reconstructs_coucy_from_its_real_drawings() {
             .filter(|s| s["footprint"]["type"] == "wall")
             .all(|s| s["role"] == "curtain" || s["role"] == "wall")
     );
-    assert!(structures.len() <= 44, "{} structures", structures.len());
+    // 42 named structures and 7 masses of wall the fits leave bare (blocks of stone).
+    let masses = with_role("mass").len();
+    assert!(
+        structures.len() - masses <= 44 && masses <= 10,
+        "{} structures, {masses} masses",
+        structures.len()
+    );
     for f in [
         "model.glb",
         "index.html",

@@ -94,6 +94,10 @@ pub enum Role {
     Room,
     /// A wall inside the castle that divides wards or rooms: no parapet.
     Wall,
+    /// A mass of wall the plan draws that no fitted structure explains (a wall §5.1.5 fitted
+    /// nothing to, a solid the skeleton pruned): blocks of stone cut from its pixels, §5.3's
+    /// extrusion of the labelled wall (`structures::bare::masses`).
+    Mass,
 }
 
 impl Role {
@@ -107,6 +111,7 @@ impl Role {
             Role::Range => "range",
             Role::Room => "room",
             Role::Wall => "wall",
+            Role::Mass => "mass",
         }
     }
 }

@@ -68,6 +68,8 @@ impl RoleSummary {
             (Role::Curtain, _) => "curtain runs",
             (Role::Wall, 1) => "inner wall",
             (Role::Wall, _) => "inner walls",
+            (Role::Mass, 1) => "wall mass",
+            (Role::Mass, _) => "wall masses",
             (r, 1) => r.name(),
             (Role::Keep, _) => "keeps",
             (Role::Tower, _) => "towers",

@@ -55,15 +55,36 @@ fn show(a: &Agreement) -> String {
 fn coucy_model_covers_its_plan_at_least_as_well_as_today() {
     let r = reconstruct("coucy");
     let a = &r.agreement;
-    // Measured (issue 25): IoU 0.857, precision 0.916, recall 0.931, every room (21) and tower
-    // (6) built; with the pruned chains judged piece by piece, 0.829, 0.918, 0.896; with one
+    // Measured (issue 25): IoU 0.880, precision 0.921, recall 0.952, every room (21) and tower
+    // (6) built; before the masses of wall left bare (`structures::bare::masses`), 0.860, 0.921,
+    // 0.929; with the pruned chains judged piece by piece, 0.829, 0.918, 0.896; with one
     // thickness per wall run, 0.802, 0.911, 0.870; before the structures of issue 25, 0.721,
     // 0.953, 0.747, 11 / 21 and 4 / 6.
     // The floors leave 0.02 for floating-point drift between builds; what is missing is the
     // hachured band round the donjon's moat and the outworks' ends
     // (overlays/plan_model.png).
-    assert!(a.iou >= 0.835, "{}", show(a));
-    assert!(a.recall >= 0.91, "{}", show(a));
+    assert!(a.iou >= 0.86, "{}", show(a));
+    assert!(a.recall >= 0.93, "{}", show(a));
+    // The masses are few and of stone: no roof, no higher than the curtain.
+    let masses: Vec<_> = r
+        .estimate
+        .structures
+        .iter()
+        .filter(|s| s.role == integrate::estimate::Role::Mass)
+        .collect();
+    assert!((1..=10).contains(&masses.len()), "{}", masses.len());
+    let curtain = r
+        .estimate
+        .structures
+        .iter()
+        .filter(|s| s.role == integrate::estimate::Role::Curtain)
+        .map(|s| s.height)
+        .fold(0.0, f64::max);
+    assert!(
+        masses
+            .iter()
+            .all(|m| m.height <= curtain && m.roof.is_none())
+    );
     assert_eq!(a.towers_present(), a.towers.len(), "{}", show(a));
     assert_eq!(a.rooms_present(), a.rooms.len(), "{}", show(a));
     // stats.json carries the same figures.

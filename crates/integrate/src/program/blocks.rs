@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use crate::estimate::{Footprint, Roof, Structure};
+use crate::estimate::{Footprint, Role, Roof, Structure};
 
 use super::common::{Part, n};
 
@@ -36,11 +36,14 @@ pub(super) fn room(s: &Structure) -> Part {
         ));
     }
     // The user may take the flat roof off (`[[structure]] roof = "none"`, issue 22).
-    let body = if s.roof == Some(Roof::None) {
-        "wallStone"
+    // A mass of wall (`Role::Mass`) is stone to the top, unless the
+    // user gave it a roof.
+    let unroofed = s.roof.unwrap_or(if s.role == Role::Mass {
+        Roof::None
     } else {
-        "roomBlock"
-    };
+        Roof::Flat
+    }) == Roof::None;
+    let body = if unroofed { "wallStone" } else { "roomBlock" };
     let _ = writeln!(out.rules, "{id} :: {{{body}}};");
     out
 }
@@ -54,5 +57,56 @@ pub(super) fn shared(u: f64) -> Part {
         ),
         axiom: Vec::new(),
         rules: "\n// Rooms no circle or rectangle fits (issue 25): each block the building's mass under a flat roof.\nroomBlock :: split(\"Y\", {~1, roomRoofT}){wallStone, roof};\n".to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::{Block, Kind};
+    use plan::label::Label;
+
+    fn of(role: Role, roof: Option<Roof>) -> Structure {
+        Structure {
+            id: "b1".into(),
+            label: Label::UnknownWall,
+            role,
+            kind: Kind::Solid,
+            footprint: Footprint::Blocks {
+                rotation: 0.0,
+                blocks: vec![Block {
+                    center: [1.0, 2.0],
+                    size: [3.0, 4.0],
+                }],
+            },
+            height: 6.0,
+            wall_thickness: 1.0,
+            facades: vec![],
+            roof,
+            crenellated: None,
+            children: vec![],
+            provenance: Default::default(),
+        }
+    }
+
+    #[test]
+    fn a_range_of_blocks_is_roofed_and_a_mass_of_wall_is_stone_unless_the_user_roofs_it() {
+        assert_eq!(room(&of(Role::Range, None)).rules, "b1 :: {roomBlock};\n");
+        assert_eq!(
+            room(&of(Role::Range, Some(Roof::None))).rules,
+            "b1 :: {wallStone};\n"
+        );
+        assert_eq!(room(&of(Role::Mass, None)).rules, "b1 :: {wallStone};\n");
+        assert_eq!(
+            room(&of(Role::Mass, Some(Roof::Flat))).rules,
+            "b1 :: {roomBlock};\n"
+        );
+        let axiom = &room(&of(Role::Mass, None)).axiom;
+        assert_eq!(axiom.len(), 1);
+        assert!(
+            axiom[0].0.contains("I(\"box\", {3, b1H, 4})"),
+            "{}",
+            axiom[0].0
+        );
     }
 }

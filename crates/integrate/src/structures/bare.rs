@@ -5,8 +5,18 @@
 //! built, the outer wall's pixels that none covers are grouped; a group whose edge towards the
 //! surroundings is an arc of a circle about as large as a tower becomes a tower on that circle.
 //!
-//! Departure from §5.3, which extrudes every labelled pixel as it is: only groups a circle fits
-//! are built, so the model is still read from fits.
+//! Then the masses of wall still bare, of any wall label ([`masses`]): a wall §5.1.5 fitted
+//! nothing to (a stretch of curtain whose edge the skeleton broke, an outwork), a solid mass the
+//! skeleton pruned. An opening takes off the slivers a built wall leaves along the faces of a
+//! wall drawn a little wider; what remains, when as large as a square of the curtain's
+//! thickness, is built as blocks of stone cut from its pixels (`blocks::cover`).
+//!
+//! Departure from §5.3, which extrudes every labelled pixel as it is: its extrusion is kept only
+//! for what the fits leave bare, after them, so the model is read from fits wherever they
+//! explain the drawing. Over the 34 shared plans the masses move the median plan–model IoU from
+//! 0.822 to 0.853 (opening 0.25 of the curtain and masses from 1 square curtain: 0.853; from 2
+//! squares 0.835, from 4 0.835; from half a square 0.856 with 4 % more structures; opening 0.15
+//! 0.856, 0.4 with 2 squares 0.833).
 
 use plan::ParsedPlan;
 use plan::bulges::BulgeTower;
@@ -14,8 +24,11 @@ use plan::fit::{fit_circle, segment_distance};
 use plan::label::Label;
 use raster::components::{Connectivity, components_where};
 
+use std::collections::BTreeMap;
+
+use super::OutlineFrame;
 use crate::correspond::contains;
-use crate::estimate::{Footprint, Structure};
+use crate::estimate::{Block, Element, Footprint, Kind, Provenance, Role, Structure};
 
 /// A group is looked at from this many square curtain thicknesses of bare pixels …
 const MIN_AREA: f64 = 1.0;
@@ -156,6 +169,138 @@ pub(super) fn towers(
     found
 }
 
+/// A bare mass is looked at after an opening of this share of the curtain's thickness (at
+/// least a pixel) takes off the slivers along the built walls' faces …
+const MASS_OPEN: f64 = 0.25;
+/// … and built when it keeps this many square curtain thicknesses of pixels.
+const MASS_AREA: f64 = 1.0;
+
+/// A mass of wall the structures leave bare: its plan label (the one most of its pixels
+/// carry) and the rows of its pixels (`[y, x0, x1]`).
+pub(super) struct Mass {
+    pub label: Label,
+    pub runs: Vec<[u32; 3]>,
+}
+
+impl Mass {
+    /// The mass as a structure of blocks of stone cut from its pixels (`blocks::cover`, one
+    /// strip a curtain thick), at its label's class height but no higher than the curtain;
+    /// `id` names it once its blocks are found.
+    pub(super) fn structure(
+        &self,
+        id: impl FnOnce() -> String,
+        frame: &OutlineFrame,
+    ) -> Option<Structure> {
+        let OutlineFrame {
+            s,
+            heights,
+            image,
+            curtain_px,
+        } = *frame;
+        let t = curtain_px?;
+        let (rotation, blocks) = super::blocks::cover(&self.runs, t)?;
+        let blocks = blocks
+            .into_iter()
+            .map(|b| Block {
+                center: [b.center[0] * s, b.center[1] * s],
+                size: [b.size[0] * s, b.size[1] * s],
+            })
+            .collect();
+        let id = id();
+        let name = self.label.name();
+        let mut provenance = BTreeMap::new();
+        provenance.insert(
+            "footprint".to_string(),
+            Provenance::new(
+                image,
+                format!(
+                    "issue 25: plan pixels labelled {name} that no structure fitted above covers, cut into blocks along their long axis (§5.3's extrusion of the labelled wall)"
+                ),
+                None,
+            ),
+        );
+        provenance.insert(
+            "height".to_string(),
+            Provenance::new(
+                "default",
+                format!("§5.3 class height of {name}, at most the curtain's"),
+                None,
+            ),
+        );
+        Some(Structure {
+            children: vec![Element::leaf(format!("{id}Mass"), "mass")],
+            id,
+            label: self.label,
+            role: Role::Mass,
+            kind: Kind::Solid,
+            footprint: Footprint::Blocks { rotation, blocks },
+            // A mass beside a tower is no tower.
+            height: heights
+                .of(self.label)
+                .min(heights.of(Label::CastleOuterWall)),
+            wall_thickness: t * s,
+            facades: Vec::new(),
+            roof: None,
+            crenellated: None,
+            provenance,
+        })
+    }
+}
+
+/// The masses of wall-labelled plan pixels that `built` leaves bare (a wall §5.1.5 fitted
+/// nothing to, a solid mass the skeleton pruned), for a curtain `curtain_px` thick; `s` model
+/// units per pixel.
+pub(super) fn masses(plan: &ParsedPlan, built: &[Structure], s: f64, curtain_px: f64) -> Vec<Mass> {
+    let (w, h) = (plan.width as usize, plan.height as usize);
+    if plan.labels.len() != w * h || curtain_px <= 0.0 || w == 0 || h == 0 {
+        return Vec::new();
+    }
+    let cover = covered(plan, built, s);
+    let is_wall = |i: usize| {
+        Label::ALL
+            .get(usize::from(plan.labels[i]))
+            .is_some_and(|l| l.is_wall())
+    };
+    let bare = image::GrayImage::from_fn(plan.width, plan.height, |x, y| {
+        let i = y as usize * w + x as usize;
+        image::Luma([if is_wall(i) && !cover[i] { 255 } else { 0 }])
+    });
+    let radius = (MASS_OPEN * curtain_px).round().clamp(1.0, 255.0) as u8;
+    let (opened, _) = raster::morphology::top_hat(&bare, raster::morphology::Norm::LInf, radius);
+    let groups = raster::components::components(&opened, 255, Connectivity::Eight);
+    let min_area = MASS_AREA * curtain_px * curtain_px;
+    let n = groups.sizes.len();
+    let mut runs: Vec<Vec<[u32; 3]>> = vec![Vec::new(); n];
+    let mut votes: Vec<[usize; 11]> = vec![[0; 11]; n];
+    for y in 0..h {
+        let mut x = 0;
+        while x < w {
+            let g = groups.labels[y * w + x] as usize;
+            if g == 0 || (groups.sizes[g] as f64) < min_area {
+                x += 1;
+                continue;
+            }
+            let x0 = x;
+            while x < w && groups.labels[y * w + x] as usize == g {
+                votes[g][usize::from(plan.labels[y * w + x]).min(10)] += 1;
+                x += 1;
+            }
+            runs[g].push([y as u32, x0 as u32, x as u32 - 1]);
+        }
+    }
+    runs.into_iter()
+        .zip(votes)
+        .filter(|(r, _)| !r.is_empty())
+        .filter_map(|(runs, votes)| {
+            let most = (0..11).max_by_key(|&l| votes[l])?;
+            Some(Mass {
+                label: *Label::ALL.get(most)?,
+                runs,
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,6 +368,65 @@ mod tests {
         assert!((t.center[0] - 60.0).abs() < 1.5, "{t:?}");
         assert!((t.center[1] - 36.0).abs() < 2.5, "{t:?}");
         assert!((t.radius - 16.0).abs() < 1.5, "{t:?}");
+    }
+
+    /// The pixels of a mass, counted from its rows.
+    fn area(m: &Mass) -> u32 {
+        m.runs.iter().map(|&[_, x0, x1]| x1 - x0 + 1).sum()
+    }
+
+    #[test]
+    fn the_strip_and_the_tower_left_bare_are_masses_of_their_exact_pixels() {
+        let mut found = masses(&plan(), &[curtain(8.0)], 2.0, 8.0);
+        assert_eq!(found.len(), 2);
+        // The tower comes first in raster order (its top is row 20); the strip, rows 30..=35,
+        // x 12..=39, is untouched by the opening (a 5 × 5 square fits in it everywhere).
+        let strip = found.remove(1);
+        assert_eq!(strip.label, Label::CastleOuterWall);
+        assert_eq!(area(&strip), 28 * 6);
+        assert_eq!(strip.runs.first(), Some(&[30, 12, 39]));
+        assert_eq!(strip.runs.last(), Some(&[35, 12, 39]));
+        // The tower above the curtain: its half disc, less the corners the opening shaves.
+        let half_disc = std::f64::consts::PI * 16.0 * 16.0 / 2.0;
+        let tower = f64::from(area(&found[0]));
+        assert!(
+            tower > 0.85 * half_disc && tower <= half_disc + 20.0,
+            "{tower}"
+        );
+    }
+
+    #[test]
+    fn slivers_along_a_wall_built_thinner_than_drawn_are_no_mass() {
+        // Built 6 px thick on an 8-px curtain, a pixel row is left bare on either face; with
+        // the tower and the strip built too, nothing else is.
+        let tower = Structure {
+            footprint: Footprint::Circle {
+                center: [120.0, 72.0],
+                radius: 34.0,
+            },
+            ..curtain(8.0)
+        };
+        let strip = Structure {
+            footprint: Footprint::Blocks {
+                rotation: 0.0,
+                blocks: vec![crate::estimate::Block {
+                    center: [51.0, 65.0],
+                    size: [58.0, 14.0],
+                }],
+            },
+            ..curtain(8.0)
+        };
+        assert!(masses(&plan(), &[curtain(6.0), tower, strip], 2.0, 8.0).is_empty());
+        // Against a curtain 16 px thick the opening (9 × 9) takes the strip, 6 px wide, and
+        // leaves the tower; against one 20 px thick the tower is under the 400 px a mass needs.
+        let tower = masses(&plan(), &[curtain(8.0)], 2.0, 16.0);
+        assert_eq!(tower.len(), 1);
+        assert!(
+            tower[0].runs.iter().all(|&[y, _, _]| y < 36),
+            "{:?}",
+            tower[0].runs
+        );
+        assert!(masses(&plan(), &[curtain(8.0)], 2.0, 20.0).is_empty());
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! half the wall), towers found as bulges of the curtain (`plan::bulges`, no room drawn)
 //! become solid cylindrical towers, and the walls no room owns become runs of curtain and of
 //! inner wall ([`walls`]). Each structure has a role ([`roles`]: keep, tower, range, room,
-//! curtain, wall). Heights are the class defaults of §5.3 until a façade says otherwise.
+//! curtain, wall, and the masses of wall the rest leaves bare). Heights are the class defaults of §5.3 until a façade says otherwise.
 
 mod bare;
 mod blocks;
@@ -640,6 +640,12 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
             );
             let id = next_id(Role::Tower.name());
             out.push(round_tower(b, id, Role::Tower, step, &outline));
+        }
+        // Issue 25: masses of wall nothing above covers (`bare::masses`), blocks of stone.
+        for mass in bare::masses(plan, &out, s, t) {
+            if let Some(st) = mass.structure(|| next_id(Role::Mass.name()), &outline) {
+                out.push(st);
+            }
         }
     }
     out
