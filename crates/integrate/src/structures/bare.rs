@@ -28,7 +28,7 @@ use std::collections::BTreeMap;
 
 use super::OutlineFrame;
 use crate::correspond::contains;
-use crate::estimate::{Block, Element, Footprint, Kind, Provenance, Role, Structure};
+use crate::estimate::{Element, Footprint, Kind, Provenance, Role, Structure};
 
 /// A group is looked at from this many square curtain thicknesses of bare pixels …
 const MIN_AREA: f64 = 1.0;
@@ -198,14 +198,7 @@ impl Mass {
             curtain_px,
         } = *frame;
         let t = curtain_px?;
-        let (rotation, blocks) = super::blocks::cover(&self.runs, t)?;
-        let blocks = blocks
-            .into_iter()
-            .map(|b| Block {
-                center: [b.center[0] * s, b.center[1] * s],
-                size: [b.size[0] * s, b.size[1] * s],
-            })
-            .collect();
+        let footprint = super::blocks::footprint(&self.runs, t, s)?;
         let id = id();
         let name = self.label.name();
         let mut provenance = BTreeMap::new();
@@ -233,7 +226,7 @@ impl Mass {
             label: self.label,
             role: Role::Mass,
             kind: Kind::Solid,
-            footprint: Footprint::Blocks { rotation, blocks },
+            footprint,
             // A mass beside a tower is no tower.
             height: heights
                 .of(self.label)

@@ -5,7 +5,7 @@
 //! grouped into intervals along it, and neighbouring strips with the same interval merged — a
 //! few rectangles that cover the room as drawn.
 
-use crate::estimate::Block;
+use crate::estimate::{Block, Footprint};
 
 /// Strips are this many pixels wide at least …
 const MIN_STRIP: f64 = 2.0;
@@ -16,6 +16,19 @@ const MAX_STRIPS: f64 = 24.0;
 const GAP: f64 = 1.5;
 /// Neighbouring strips' intervals closer than this at both ends are one block.
 const MERGE: f64 = 1.5;
+
+/// [`cover`] as a footprint in model units, `s` per plan pixel.
+pub(super) fn footprint(runs: &[[u32; 3]], strip: f64, s: f64) -> Option<Footprint> {
+    let (rotation, blocks) = cover(runs, strip)?;
+    let blocks = blocks
+        .into_iter()
+        .map(|b| Block {
+            center: [b.center[0] * s, b.center[1] * s],
+            size: [b.size[0] * s, b.size[1] * s],
+        })
+        .collect();
+    Some(Footprint::Blocks { rotation, blocks })
+}
 
 /// Rectangles covering the pixels of `runs` (`[y, x0, x1]`), plan pixels, in the frame turned
 /// by the returned angle (the longer side of their least bounding rectangle, from the x axis,

@@ -21,7 +21,7 @@ use plan::label::Label;
 use plan::scale::{ModelScale, outer_wall_thickness};
 
 use crate::correspond::{area, contains};
-use crate::estimate::{Block, Element, Footprint, Kind, Provenance, Role, Structure};
+use crate::estimate::{Element, Footprint, Kind, Provenance, Role, Structure};
 use roles::{Candidate, SQUAREISH};
 
 /// The base of a structure's id: its role, or for a room its label's building.
@@ -335,16 +335,8 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
                 _ => {
                     // Issue 25: every room is built; one no circle or rectangle fits is
                     // covered by blocks cut from its open pixels, inside its walls.
-                    let (rotation, blocks) = blocks::cover(&face.runs, t_px)?;
-                    let blocks = blocks
-                        .into_iter()
-                        .map(|b| Block {
-                            center: [b.center[0] * s, b.center[1] * s],
-                            size: [b.size[0] * s, b.size[1] * s],
-                        })
-                        .collect();
                     (
-                        Footprint::Blocks { rotation, blocks },
+                        blocks::footprint(&face.runs, t_px, s)?,
                         Kind::HollowRectangular,
                         "blocks",
                         0.0,
