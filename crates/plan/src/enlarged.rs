@@ -21,32 +21,29 @@ pub(crate) fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
         }
     }
     let small = |v: f64| (v + 0.5) * inv - 0.5;
+    // A chain's pixels on the drawing: each enlarged pixel's, neighbours that fall on one
+    // pixel kept once.
+    let shrink_chain = |chain: &[(u32, u32)]| {
+        let mut points: Vec<(u32, u32)> = chain.iter().map(|&(x, y)| (x / k, y / k)).collect();
+        points.dedup();
+        points
+    };
     let edges = p
         .edges
         .into_iter()
-        .map(|e| {
-            let mut points: Vec<(u32, u32)> =
-                e.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
-            points.dedup();
-            PlanEdge {
-                points,
-                fit: e.fit.map(|f| f.scaled(inv)),
-                thickness: e.thickness * inv,
-                ..e
-            }
+        .map(|e| PlanEdge {
+            points: shrink_chain(&e.points),
+            fit: e.fit.map(|f| f.scaled(inv)),
+            thickness: e.thickness * inv,
+            ..e
         })
         .collect();
     let spurs = p
         .spurs
         .into_iter()
-        .map(|s| {
-            let mut points: Vec<(u32, u32)> =
-                s.points.iter().map(|&(x, y)| (x / k, y / k)).collect();
-            points.dedup();
-            Spur {
-                points,
-                thickness: s.thickness * inv,
-            }
+        .map(|s| Spur {
+            points: shrink_chain(&s.points),
+            thickness: s.thickness * inv,
         })
         .collect();
     let faces = p
