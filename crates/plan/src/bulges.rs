@@ -15,7 +15,8 @@ use serde::Serialize;
 
 use crate::legend::Label;
 
-/// A tower found as a bulge of the castle's outline (pixels).
+/// A tower without a room (pixels): a bulge of the castle's outline, or thick ink
+/// (`thick_towers`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BulgeTower {
     pub center: [f64; 2],

@@ -36,7 +36,8 @@ pub struct ParsedPlan {
     /// Number of towers found: groups of tower-wall edges (§5.1.6 (4)) joined at a vertex,
     /// plus the bulge towers.
     pub towers: usize,
-    /// Towers found as bulges of the castle's outline, without a room ([`bulges::find`]).
+    /// Towers found without a room: bulges of the castle's outline ([`bulges::find`]), then
+    /// compact thick ink on the enceinte ([`crate::thick_towers::find`]).
     pub bulge_towers: Vec<bulges::BulgeTower>,
     /// The wall chains §5.1.6 prunes ([`Spur`]).
     pub spurs: Vec<Spur>,
