@@ -11,8 +11,7 @@
 //! half-thickness; the pixels deeper than [`CORE`] curtains form each thick mass's core, and a
 //! core that is compact is a tower of the inscribed radius, centred on its deepest pixel.
 
-use image::{GrayImage, Luma};
-use imageproc::region_labelling::{Connectivity, connected_components};
+use raster::components::{Connectivity, components_where};
 
 use crate::bulges::BulgeTower;
 use crate::legend::Label;
@@ -42,28 +41,23 @@ pub fn find(walls: &Mask, labels: &[u8], curtain: f64) -> Vec<BulgeTower> {
     }
     let open: Vec<bool> = walls.data.iter().map(|&p| p == 0).collect();
     let depth = pixels::euclidean(&open, w, h);
+    let depth = depth.as_raw();
     let core_depth = CORE * curtain;
-    let core = GrayImage::from_fn(walls.width, walls.height, |x, y| {
-        Luma([if f64::from(depth.get_pixel(x, y)[0]) >= core_depth {
-            255
-        } else {
-            0
-        }])
+    let cores = components_where(w, h, Connectivity::Eight, |i| {
+        f64::from(depth[i]) >= core_depth
     });
-    let parts = connected_components(&core, Connectivity::Eight, Luma([0u8]));
-    let n = parts.pixels().map(|l| l[0]).max().unwrap_or(0) as usize;
-    // Per core: its pixel count and its deepest pixel (depth, x, y).
-    let mut area = vec![0usize; n + 1];
+    // Per core: its deepest pixel (depth, x, y), searched in its box.
+    let n = cores.sizes.len() - 1;
+    let area = &cores.sizes;
     let mut deepest = vec![(0u8, 0u32, 0u32); n + 1];
-    for (x, y, l) in parts.enumerate_pixels() {
-        let l = l[0] as usize;
-        if l == 0 {
-            continue;
-        }
-        area[l] += 1;
-        let d = depth.get_pixel(x, y)[0];
-        if d > deepest[l].0 {
-            deepest[l] = (d, x, y);
+    for (l, b) in cores.bbox.iter().enumerate().skip(1) {
+        for y in b[1]..=b[3] {
+            for x in b[0]..=b[2] {
+                let i = y as usize * w + x as usize;
+                if cores.labels[i] as usize == l && depth[i] > deepest[l].0 {
+                    deepest[l] = (depth[i], x, y);
+                }
+            }
         }
     }
     let c2 = curtain * curtain;
