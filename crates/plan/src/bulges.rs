@@ -23,6 +23,29 @@ pub struct BulgeTower {
     pub radius: f64,
 }
 
+impl BulgeTower {
+    /// Row-major indices of the pixels of the tower's disc grown by a pixel, clipped to the
+    /// `width` × `height` image: the pixels a tower marks as its walls.
+    pub fn pixels(&self, width: u32, height: u32) -> impl Iterator<Item = usize> + use<> {
+        let r = self.radius + 1.0;
+        let (w, h) = (i64::from(width), i64::from(height));
+        let [cx, cy] = self.center;
+        let (x0, x1) = (
+            ((cx - r).floor() as i64).max(0),
+            ((cx + r).ceil() as i64).min(w - 1),
+        );
+        let (y0, y1) = (
+            ((cy - r).floor() as i64).max(0),
+            ((cy + r).ceil() as i64).min(h - 1),
+        );
+        (y0..=y1).flat_map(move |y| {
+            (x0..=x1).filter_map(move |x| {
+                ((x as f64 - cx).hypot(y as f64 - cy) <= r).then_some((y * w + x) as usize)
+            })
+        })
+    }
+}
+
 /// A bulge must leave its chord by this many curtain thicknesses (§5.1.6 (4) asks 1.5).
 const MIN_DEPTH: f64 = 1.5;
 /// … and by this fraction of the chord (a semicircle leaves it by one half).

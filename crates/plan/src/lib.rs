@@ -126,8 +126,8 @@ pub struct Options {
     pub bulge_towers: bool,
     /// Count compact masses of ink much thicker than the curtain as towers
     /// ([`thick_towers::find`]; issue 26, departure from §5.1.6 (4)): development set exact
-    /// counts 2 → 4 of 31 (mean error 7.2 → 4.9), other hands 3 → 6 of 20 (4.2 → 2.6; docs/plan.md,
-    /// "Towers drawn as thick ink").
+    /// counts 2 → 4 of 31 (mean error 7.2 → 4.9), other hands 3 → 6 of 20 (4.2 → 2.6;
+    /// docs/plan.md, "Towers drawn as thick ink").
     pub thick_towers: bool,
     /// Fill hatched walls ([`hatched_walls::fill_hatching`]) before §5.1.2's steps, for drawings
     /// whose walls are hatched. Off by default: on the development set (solid walls) it
@@ -478,14 +478,23 @@ fn parse_grey(
     let mut warnings = labelling.warnings;
     warnings.extend(measure::sheet_warnings(&walls, &pre));
     laps.lap("wall bbox, warnings");
-    let mut bulge_towers = if opts.bulge_towers {
-        find_bulge_towers(&mut labels, &walls, &edges)
-    } else {
-        Vec::new()
+    // The outer walls' thicknesses, sorted, and the curtain's from them (`None`: no outer wall,
+    // so no tower of the outline or of thick ink).
+    let mut outer: Vec<(f64, usize)> = edges
+        .iter()
+        .filter(|e| e.label == Label::CastleOuterWall)
+        .map(|e| (e.thickness, e.points.len()))
+        .collect();
+    let curtain = bulges::curtain_thickness(&mut outer);
+    let mut bulge_towers = match curtain {
+        Some(c) if opts.bulge_towers => find_bulge_towers(&mut labels, &walls, c, &outer),
+        _ => Vec::new(),
     };
     laps.lap("bulge towers");
-    if opts.thick_towers {
-        bulge_towers.extend(find_thick_towers(&mut labels, &walls, &edges));
+    if let Some(c) = curtain.filter(|_| opts.thick_towers) {
+        let thick = thick_towers::find(&walls, &labels, c);
+        mark_tower_walls(&mut labels, &walls, &thick, Label::is_wall);
+        bulge_towers.extend(thick);
     }
     laps.lap("thick towers");
     let towers = count_towers(&edges, g.vertices.len()) + bulge_towers.len();
@@ -510,75 +519,40 @@ fn parse_grey(
     })
 }
 
-/// The outer walls' (thickness, skeleton length) pairs, for [`bulges::curtain_thickness`].
-fn outer_walls(edges: &[PlanEdge]) -> Vec<(f64, usize)> {
-    edges
-        .iter()
-        .filter(|e| e.label == Label::CastleOuterWall)
-        .map(|e| (e.thickness, e.points.len()))
-        .collect()
-}
-
-/// Towers drawn as thick ink ([`thick_towers::find`]), measured against the curtain; their
-/// wall pixels become tower walls.
-fn find_thick_towers(
-    labels: &mut [u8],
-    walls: &Mask,
-    edges: &[PlanEdge],
-) -> Vec<bulges::BulgeTower> {
-    let Some(curtain) = bulges::curtain_thickness(&mut outer_walls(edges)) else {
-        return Vec::new();
-    };
-    let towers = thick_towers::find(walls, labels, curtain);
-    for t in &towers {
-        for i in thick_towers::disc_pixels(t, walls.width, walls.height as usize) {
-            if walls.data[i] == 1 && Label::ALL[labels[i] as usize].is_wall() {
-                labels[i] = Label::TowerWall as u8;
-            }
-        }
-    }
-    towers
-}
-
-/// Bulge towers of the outline, measured against the outer wall's median thickness; their wall
-/// pixels become tower walls.
+/// Bulge towers of the outline, measured against the curtain's thickness `curtain` and the
+/// outer walls' median (`outer`: their (thickness, length) pairs sorted by thickness); their
+/// outer-wall pixels become tower walls.
 fn find_bulge_towers(
     labels: &mut [u8],
     walls: &Mask,
-    edges: &[PlanEdge],
+    curtain: f64,
+    outer: &[(f64, usize)],
 ) -> Vec<bulges::BulgeTower> {
-    let mut outer = outer_walls(edges);
-    let Some(curtain) = bulges::curtain_thickness(&mut outer) else {
-        return Vec::new();
-    };
     let mut towers = bulges::find(labels, walls.width, walls.height, curtain);
     // A letter or a dot drawn against the curtain bulges too, but a tower is wider than the
     // wall it studs. Bulges of radius under 0.4 × the outer walls' median thickness (over
     // edges, as integration takes the curtain) were, on the development set, exactly the
     // letter O on Sully's plan and a dot on the Tower of London's (2.8 and 3.6 px against
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
-    let median = outer[outer.len() / 2].0; // `outer` is sorted by thickness now
+    let median = outer[outer.len() / 2].0;
     towers.retain(|t| t.radius >= 0.4 * median);
-    let w = walls.width as usize;
-    for t in &towers {
-        let r = t.radius + 1.0;
-        let (x0, x1) = (
-            (t.center[0] - r).max(0.0) as usize,
-            (t.center[0] + r) as usize,
-        );
-        let (y0, y1) = (
-            (t.center[1] - r).max(0.0) as usize,
-            (t.center[1] + r) as usize,
-        );
-        for y in y0..=y1.min(walls.height as usize - 1) {
-            for x in x0..=x1.min(w - 1) {
-                let i = y * w + x;
-                let inside = (x as f64 - t.center[0]).hypot(y as f64 - t.center[1]) <= r;
-                if inside && walls.data[i] == 1 && labels[i] == Label::CastleOuterWall as u8 {
-                    labels[i] = Label::TowerWall as u8;
-                }
+    mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
+    towers
+}
+
+/// The wall pixels of each tower's disc (grown by a pixel) whose label `from` accepts become
+/// tower walls.
+fn mark_tower_walls(
+    labels: &mut [u8],
+    walls: &Mask,
+    towers: &[bulges::BulgeTower],
+    from: impl Fn(Label) -> bool,
+) {
+    for t in towers {
+        for i in t.pixels(walls.width, walls.height) {
+            if walls.data[i] == 1 && from(Label::ALL[labels[i] as usize]) {
+                labels[i] = Label::TowerWall as u8;
             }
         }
     }
-    towers
 }

@@ -37,7 +37,7 @@ pub struct ParsedPlan {
     /// plus the bulge towers.
     pub towers: usize,
     /// Towers found without a room: bulges of the castle's outline ([`bulges::find`]), then
-    /// compact thick ink on the enceinte ([`crate::thick_towers::find`]).
+    /// compact thick ink standing out of the enceinte ([`crate::thick_towers::find`]).
     pub bulge_towers: Vec<bulges::BulgeTower>,
     /// The wall chains §5.1.6 prunes ([`Spur`]).
     pub spurs: Vec<Spur>,

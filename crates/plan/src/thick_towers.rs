@@ -32,8 +32,8 @@ const MAX_CORE_DISCS: f64 = 4.0;
 /// wall's thickness in pixels; `labels` the pixel labels, where a tower already found (a tower
 /// wall) keeps the thick ink round it from being counted again. A tower stands out of the
 /// enceinte: its disc reaches the surroundings. Thick ink inside the castle is a range's
-/// junction, a room's corner or a building the ink filled (Montargis' inner buildings). Each tower's centre is its
-/// deepest pixel and its radius the ink's half-thickness there.
+/// junction, a room's corner or a building the ink filled (Montargis' inner buildings). Each
+/// tower's centre is its deepest pixel and its radius the ink's half-thickness there.
 pub fn find(walls: &Mask, labels: &[u8], curtain: f64) -> Vec<BulgeTower> {
     let (w, h) = (walls.width as usize, walls.height as usize);
     if w == 0 || h == 0 || curtain <= 0.0 {
@@ -80,31 +80,8 @@ pub fn find(walls: &Mask, labels: &[u8], curtain: f64) -> Vec<BulgeTower> {
 
 /// Whether any pixel of the tower's disc (its radius plus one) has the label.
 fn touches(t: &BulgeTower, labels: &[u8], width: u32, label: Label) -> bool {
-    disc_pixels(t, width, labels.len() / width as usize).any(|i| labels[i] == label as u8)
-}
-
-/// Indices of the pixels of the tower's disc grown by a pixel, clipped to the image.
-pub(crate) fn disc_pixels(
-    t: &BulgeTower,
-    width: u32,
-    height: usize,
-) -> impl Iterator<Item = usize> {
-    let r = t.radius + 1.0;
-    let (w, h) = (width as i64, height as i64);
-    let (cx, cy) = (t.center[0], t.center[1]);
-    let (x0, x1) = (
-        ((cx - r).floor() as i64).max(0),
-        ((cx + r).ceil() as i64).min(w - 1),
-    );
-    let (y0, y1) = (
-        ((cy - r).floor() as i64).max(0),
-        ((cy + r).ceil() as i64).min(h - 1),
-    );
-    (y0..=y1).flat_map(move |y| {
-        (x0..=x1).filter_map(move |x| {
-            ((x as f64 - cx).hypot(y as f64 - cy) <= r).then_some((y * w + x) as usize)
-        })
-    })
+    let height = (labels.len() / width as usize) as u32;
+    t.pixels(width, height).any(|i| labels[i] == label as u8)
 }
 
 #[cfg(test)]
