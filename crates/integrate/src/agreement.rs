@@ -385,6 +385,14 @@ pub fn compare(labels: &[u8], bulges: &[BulgeTower], view: &TopView, ids: &[Stri
         .cloned()
         .collect();
     for b in bulges {
+        // A tower listed on the pixels whose centre is in a tower room is that room's tower
+        // (a ring tower, `plan::ring_towers`): counted once, as the model builds it once.
+        let [cx, cy] = b.center.map(|v| v.round() as i64);
+        let at = (cx >= 0 && cy >= 0 && (cx as usize) < w && (cy as usize) < h)
+            .then(|| labels[cy as usize * w + cx as usize]);
+        if at == Some(Label::TowerRoom as u8) {
+            continue;
+        }
         let disc = disc(b, w, h);
         if !disc.is_empty() {
             towers.push(presence(Label::TowerRoom, &disc));

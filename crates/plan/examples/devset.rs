@@ -2,7 +2,7 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--no-gates] [--trim-ink] [--no-inner-towers]
-//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--overlays DIR] [--all] [--closed]`; `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--overlays DIR] [--all] [--closed]`; `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 #[path = "../tests/common/mod.rs"]
@@ -35,6 +35,7 @@ fn main() {
         thin_lines: arg_value("--thin-lines").map_or(0.0, |v| v.parse().unwrap()),
         bulge_towers: !args.iter().any(|a| a == "--no-bulge-towers"),
         thick_towers: !args.iter().any(|a| a == "--no-thick-towers"),
+        ring_towers: !args.iter().any(|a| a == "--no-ring-towers"),
         hatching: args.iter().any(|a| a == "--hatching"),
         hachures: args.iter().any(|a| a == "--hachures"),
         dashes: !args.iter().any(|a| a == "--no-dashes"),

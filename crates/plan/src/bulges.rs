@@ -15,8 +15,9 @@ use serde::Serialize;
 
 use crate::legend::Label;
 
-/// A tower without a room (pixels): a bulge of the castle's outline, or thick ink
-/// (`thick_towers`).
+/// A tower found on the pixels rather than as tower-wall edges (pixels): a bulge of the
+/// castle's outline, thick ink (`thick_towers`), or a ring round rooms on the curtain
+/// (`ring_towers`, whose rooms are tower rooms).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BulgeTower {
     pub center: [f64; 2],
@@ -46,6 +47,19 @@ impl BulgeTower {
     }
 }
 
+/// Leaves out every tower whose centre lies inside the disc of a larger one: two finders saw
+/// the same tower (a ring's room inside a bulge of the outline, Chambord's north tower).
+pub(crate) fn drop_nested(towers: &mut Vec<BulgeTower>) {
+    let all = towers.clone();
+    let key = |t: &BulgeTower| (t.radius, t.center[0], t.center[1]);
+    towers.retain(|t| {
+        !all.iter().any(|u| {
+            key(u) > key(t)
+                && (t.center[0] - u.center[0]).hypot(t.center[1] - u.center[1]) <= u.radius
+        })
+    });
+}
+
 /// A bulge must leave its chord by this many curtain thicknesses (§5.1.6 (4) asks 1.5).
 const MIN_DEPTH: f64 = 1.5;
 /// … and by this fraction of the chord (a semicircle leaves it by one half).
@@ -59,8 +73,8 @@ const FLANK_TOLERANCE: f64 = 0.2;
 
 /// The curtain's thickness from the outer walls' (thickness, skeleton length) pairs, which
 /// it sorts by thickness: the lower quartile by length, since an edge's thickness is averaged
-/// along its chain, towers included. `None` without outer walls. Shared by this finder and
-/// the inner-ward towers' wall test (`inner_towers`).
+/// along its chain, towers included. `None` without outer walls. Shared by this finder, the
+/// inner-ward towers' wall test (`inner_towers`) and the ring towers (`ring_towers`).
 pub(crate) fn curtain_thickness(outer: &mut [(f64, usize)]) -> Option<f64> {
     outer.sort_by(|a, b| a.0.total_cmp(&b.0));
     let total: usize = outer.iter().map(|e| e.1).sum();

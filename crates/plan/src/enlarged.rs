@@ -86,7 +86,12 @@ pub(crate) fn shrink(p: ParsedPlan, k: u32, w: u32, h: u32) -> ParsedPlan {
             .bulge_towers
             .into_iter()
             .map(|t| bulges::BulgeTower {
-                center: [small(t.center[0]), small(t.center[1])],
+                // Clamped to the drawing: a tower on the sheet's edge (thick ink cut off by
+                // it) has its centre on the enlarged edge pixel, a quarter pixel outside.
+                center: [
+                    small(t.center[0]).clamp(0.0, f64::from(w - 1)),
+                    small(t.center[1]).clamp(0.0, f64::from(h - 1)),
+                ],
                 radius: t.radius * inv,
             })
             .collect(),

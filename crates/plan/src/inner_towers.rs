@@ -92,7 +92,7 @@ pub(crate) fn find(
 
 /// The curtain's thickness as [`crate::bulges::curtain_thickness`] takes it, from the edges
 /// labelled outer wall so far; 0 without any.
-fn curtain_thickness(s: &Scene, el: &[Option<Label>]) -> f64 {
+pub(crate) fn curtain_thickness(s: &Scene, el: &[Option<Label>]) -> f64 {
     let mut outer: Vec<(f64, usize)> = (0..el.len())
         .filter(|&e| el[e] == Some(Label::CastleOuterWall))
         .map(|e| (s.thickness[e], s.graph.edges[e].points.len()))

@@ -13,6 +13,9 @@ pub struct Labelling {
     pub faces: Vec<Label>,
     pub edges: Vec<Label>,
     pub warnings: Vec<String>,
+    /// Towers drawn as rings round rooms on the curtain ((5''), [`crate::ring_towers`]): the
+    /// rooms of each, which are tower rooms with no tower wall, counted once each.
+    pub ring_towers: Vec<Vec<usize>>,
 }
 
 /// A face is a passage when it is long and narrow: area over its width squared above this.
@@ -91,6 +94,17 @@ pub fn heuristics(s: &Scene) -> Labelling {
             }
         }
     }
+    // (5'') towers drawn as a ring round a room on a long curtain (issue 26). Departure from
+    // §5.1.6 (4)-(5), whose tower rooms need a bulging tower wall; see `ring_towers`.
+    let mut ring_towers = Vec::new();
+    if s.ring_towers {
+        let curtain = crate::inner_towers::curtain_thickness(s, &el);
+        let (towers, of_known) = crate::ring_towers::find(s, &fl, curtain);
+        for &f in towers.iter().flatten().chain(&of_known) {
+            fl[f] = Some(Label::TowerRoom);
+        }
+        ring_towers = towers;
+    }
     // (5') further wards (issue 11, several enclosures): an unlabelled face on the outer wall
     // at least WARD_RATIO of the courtyard's area is a courtyard too. Departure from §5.1.6
     // (3), which takes one courtyard, so a second ward became the great hall or the chapel; run
@@ -141,6 +155,7 @@ pub fn heuristics(s: &Scene) -> Labelling {
             .map(|l| l.unwrap_or(Label::UnknownWall))
             .collect(),
         warnings,
+        ring_towers,
     }
 }
 

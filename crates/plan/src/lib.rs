@@ -64,6 +64,7 @@ pub use measure::{PlanFace, Spur};
 pub use parsed::{ParsedPlan, PlanEdge};
 pub mod output;
 mod pixels;
+mod ring_towers;
 pub mod scale;
 pub mod scalebar;
 mod scene;
@@ -129,6 +130,11 @@ pub struct Options {
     /// counts 2 → 4 of 31 (mean error 7.2 → 4.9), other hands 3 → 6 of 20 (4.2 → 2.6;
     /// docs/plan.md, "Towers drawn as thick ink").
     pub thick_towers: bool,
+    /// Take rooms that the surroundings wrap, round and small, as the rooms of towers drawn
+    /// as rings on the curtain ([`label::heuristics`] (5''); issue 26, departure from §5.1.6
+    /// (4)–(5)): development set points 131 → 138 of 169 (docs/plan.md, "Towers drawn as a
+    /// ring").
+    pub ring_towers: bool,
     /// Fill hatched walls ([`hatched_walls::fill_hatching`]) before §5.1.2's steps, for drawings
     /// whose walls are hatched. Off by default: on the development set (solid walls) it
     /// takes hachures for hatching and exact tower counts fall 6 → 4 (docs/plan.md).
@@ -170,6 +176,7 @@ impl Default for Options {
             thin_lines: 0.0,
             bulge_towers: true,
             thick_towers: true,
+            ring_towers: true,
             hatching: false,
             hachures: false,
             dashes: true,
@@ -441,6 +448,7 @@ fn parse_grey(
         edge_faces: &edge_faces,
         thickness: &thickness,
         inner_ward_towers: opts.inner_ward_towers,
+        ring_towers: opts.ring_towers,
         ward_ratio: opts.ward_ratio,
     };
     let labelling = label::heuristics(&scene);
@@ -486,16 +494,25 @@ fn parse_grey(
         .map(|e| (e.thickness, e.points.len()))
         .collect();
     let curtain = bulges::curtain_thickness(&mut outer);
+    // The ring towers' walls first, so that the outline's bulges on them are left out.
+    let rings: Vec<bulges::BulgeTower> = labelling
+        .ring_towers
+        .iter()
+        .map(|rooms| ring_towers::disc(&infos, rooms, curtain.unwrap_or(0.0)))
+        .collect();
+    mark_tower_walls(&mut labels, &walls, &rings, Label::is_wall);
     let mut bulge_towers = match curtain {
         Some(c) if opts.bulge_towers => find_bulge_towers(&mut labels, &walls, c, &outer),
         _ => Vec::new(),
     };
+    bulge_towers.extend(rings);
     laps.lap("bulge towers");
     if let Some(c) = curtain.filter(|_| opts.thick_towers) {
         let thick = thick_towers::find(&walls, &labels, c);
         mark_tower_walls(&mut labels, &walls, &thick, Label::is_wall);
         bulge_towers.extend(thick);
     }
+    bulges::drop_nested(&mut bulge_towers);
     laps.lap("thick towers");
     let towers = count_towers(&edges, g.vertices.len()) + bulge_towers.len();
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {

@@ -30,6 +30,9 @@ pub struct Scene<'a> {
     pub thickness: &'a [f64],
     /// Also test walls inside the enceinte as towers of an inner ward ((4') in [`heuristics`](crate::label::heuristics)).
     pub inner_ward_towers: bool,
+    /// Also take rooms wrapped by the surroundings as rooms of towers drawn as rings ((5'') in
+    /// [`heuristics`](crate::label::heuristics)).
+    pub ring_towers: bool,
     /// Faces on the outer wall at least this fraction of the courtyard's area are further
     /// wards ((5') in [`heuristics`](crate::label::heuristics)); 0 keeps one courtyard as §5.1.6 does.
     pub ward_ratio: f64,

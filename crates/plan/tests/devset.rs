@@ -29,6 +29,17 @@ fn measure(file: &str, ink: InkMethod) -> Option<Totals> {
         .map(|p| {
             let img = image::open(data.join(&p.file)).unwrap();
             let parsed = plan::parse(&img, &opts).ok();
+            // Every tower found on the pixels is a place on the drawing that the user can
+            // click (the enlarged drawing's edge pixel maps a quarter pixel outside it).
+            for t in parsed.iter().flat_map(|p| &p.bulge_towers) {
+                let [x, y] = t.center;
+                assert!(
+                    (0.0..=f64::from(img.width() - 1)).contains(&x)
+                        && (0.0..=f64::from(img.height() - 1)).contains(&y),
+                    "{}: {t:?}",
+                    p.file
+                );
+            }
             score(parsed.as_ref(), p, set.tolerance_px)
         })
         .collect();
@@ -39,7 +50,7 @@ fn measure(file: &str, ink: InkMethod) -> Option<Totals> {
 /// Floors at the figures measured (docs/plan.md, "Development set" and "Learned wall ink"),
 /// less a small margin for platform differences in resizing: (points right, exact towers).
 const FLOORS: [(&str, InkMethod, usize, usize); 4] = [
-    ("tests/data/devset.json", InkMethod::Learned, 125, 1),
+    ("tests/data/devset.json", InkMethod::Learned, 133, 1),
     ("tests/data/devset.json", InkMethod::Rules, 121, 3),
     ("tests/data/devset_more.json", InkMethod::Learned, 124, 2),
     ("tests/data/devset_more.json", InkMethod::Rules, 69, 3),

@@ -1,0 +1,170 @@
+//! Towers drawn as a ring of wall round a room that stands on a long curtain ((5'') of
+//! `label::heuristics`; issue 26).
+//!
+//! Departure from §5.1.6 (4)–(5), where a room is a tower room only when one of its walls is a
+//! tower wall: an outer-wall edge bulging out of the castle. A round tower drawn on the
+//! curtain (Bury, Sully, the Bastille, Chambord's corners) shares its outer half with the
+//! curtain's edge, whose chord the half-ring barely leaves, and its inner half is an unknown
+//! wall, so its room was an unknown room: the development set's most frequent error (13 of
+//! its 169 points). Here a room is a tower room when it is a tower's: small against the
+//! courtyard, round or square, not a speck, and wrapped by the surroundings — from its centre,
+//! at least 0.4 of the directions cross only the room and a wall at least 0.7 curtains thick
+//! before they reach the surroundings, nearby. A room against a straight curtain sees the
+//! surroundings over at most about a quarter of the directions; a tower standing out of the
+//! curtain over a half or more. Rooms that share a wall are one tower, and a room beside a
+//! tower room already found is that tower's (docs/plan.md, "Towers drawn as a ring").
+
+use crate::bulges::BulgeTower;
+use crate::legend::Label;
+use crate::scene::{FaceInfo, Scene};
+
+/// A tower's room is at most this fraction of the courtyard's area.
+const SMALL_ROOM: f64 = 0.15;
+/// Area over π · inset² at most this: round (1), polygonal or square (1.27), not a 2:1 range.
+const ROUND_ROOM: f64 = 1.5;
+/// The room's inset is at least this many curtain thicknesses: narrower ones are specks left
+/// between strokes (stairs, letters).
+const MIN_INSET: f64 = 0.3;
+/// Directions sampled round the room's centre.
+const RAYS: usize = 72;
+/// Share of the directions that must reach the surroundings.
+const WRAP: f64 = 0.4;
+/// … within the room's inset plus this many curtain thicknesses.
+const REACH: f64 = 3.0;
+/// The median of the wall crossed by those directions is at least this many curtain
+/// thicknesses: a tower's ring, not the thin lines of a bank or a ditch (Borrans' rampart).
+const RING_WALL: f64 = 0.7;
+
+/// Towers drawn as rings, given the face labels after §5.1.6 (5) (`fl`) and the curtain's
+/// thickness: each a group of faces (rooms sharing a wall), to be labelled tower rooms. Rooms
+/// beside a tower room of `fl` are returned in no group but in the second list: they are
+/// tower rooms of a tower already counted.
+pub(crate) fn find(s: &Scene, fl: &[Option<Label>], curtain: f64) -> (Vec<Vec<usize>>, Vec<usize>) {
+    let Some(court) = (0..fl.len())
+        .filter(|&c| fl[c] == Some(Label::Courtyard))
+        .map(|c| s.faces[c].area)
+        .max()
+    else {
+        return (Vec::new(), Vec::new());
+    };
+    let rooms: Vec<usize> = (0..fl.len())
+        .filter(|&f| fl[f].is_none() && is_ring_room(s, fl, f, court, curtain))
+        .collect();
+    let beside_tower = |f: usize| {
+        s.edge_faces
+            .iter()
+            .any(|fs| fs.contains(&f) && fs.iter().any(|&g| fl[g] == Some(Label::TowerRoom)))
+    };
+    let (of_known, new): (Vec<usize>, Vec<usize>) =
+        rooms.into_iter().partition(|&f| beside_tower(f));
+    // Rooms sharing a wall (an edge with both on its sides) are one tower.
+    let mut group: Vec<usize> = (0..new.len()).collect();
+    for fs in s.edge_faces {
+        let on: Vec<usize> = (0..new.len()).filter(|&k| fs.contains(&new[k])).collect();
+        for pair in on.windows(2) {
+            let (keep, merge) = (group[pair[0]], group[pair[1]]);
+            group
+                .iter_mut()
+                .filter(|g| **g == merge)
+                .for_each(|g| *g = keep);
+        }
+    }
+    let mut ids = group.clone();
+    ids.sort_unstable();
+    ids.dedup();
+    let groups = ids
+        .into_iter()
+        .map(|id| {
+            (0..new.len())
+                .filter(|&k| group[k] == id)
+                .map(|k| new[k])
+                .collect()
+        })
+        .collect();
+    (groups, of_known)
+}
+
+/// Whether face `f` is a room of a tower standing out of the curtain (module header).
+fn is_ring_room(s: &Scene, fl: &[Option<Label>], f: usize, court: usize, curtain: f64) -> bool {
+    let info = &s.faces[f];
+    let r = info.max_inset;
+    let area = info.area as f64;
+    if info.area == 0
+        || r < MIN_INSET * curtain
+        || area > SMALL_ROOM * court as f64
+        || area / (std::f64::consts::PI * r * r) > ROUND_ROOM
+    {
+        return false;
+    }
+    let centre = [info.sum[0] / area, info.sum[1] / area];
+    let mut walls: Vec<f64> = (0..RAYS)
+        .filter_map(|k| {
+            let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
+            wall_to_surroundings(
+                s,
+                fl,
+                f,
+                centre,
+                [angle.cos(), angle.sin()],
+                r + REACH * curtain,
+            )
+        })
+        .collect();
+    if (walls.len() as f64) < WRAP * RAYS as f64 {
+        return false;
+    }
+    walls.sort_by(f64::total_cmp);
+    walls[walls.len() / 2] >= RING_WALL * curtain
+}
+
+/// Walks from `from` along `dir` through face `f` and walls: the length of wall crossed when
+/// the first other open pixel within `reach` belongs to the surroundings (or the walk leaves
+/// the image), `None` otherwise.
+fn wall_to_surroundings(
+    s: &Scene,
+    fl: &[Option<Label>],
+    f: usize,
+    from: [f64; 2],
+    dir: [f64; 2],
+    reach: f64,
+) -> Option<f64> {
+    let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
+    let mut wall = 0.0;
+    for step in 0..=reach.floor() as usize {
+        let t = step as f64;
+        let (x, y) = (
+            (from[0] + dir[0] * t).round() as i64,
+            (from[1] + dir[1] * t).round() as i64,
+        );
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return Some(wall);
+        }
+        let i = (y * w + x) as usize;
+        if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
+            wall += 1.0;
+        } else if s.face_of[i] as usize != f {
+            let face = fl.get(s.face_of[i] as usize).copied().flatten();
+            return (face == Some(Label::CastleSurroundings)).then_some(wall);
+        }
+    }
+    None
+}
+
+/// A ring tower's disc, as the towers found on the pixels are kept ([`BulgeTower`]): round the
+/// rooms' centre of area, reaching the farthest room's far side and a curtain beyond.
+pub(crate) fn disc(faces: &[FaceInfo], rooms: &[usize], curtain: f64) -> BulgeTower {
+    let area: f64 = rooms.iter().map(|&f| faces[f].area as f64).sum();
+    let centre = [0, 1].map(|k| rooms.iter().map(|&f| faces[f].sum[k]).sum::<f64>() / area);
+    let reach = rooms
+        .iter()
+        .map(|&f| {
+            let i = &faces[f];
+            let a = i.area as f64;
+            (i.sum[0] / a - centre[0]).hypot(i.sum[1] / a - centre[1]) + i.max_inset
+        })
+        .fold(0.0, f64::max);
+    BulgeTower {
+        center: centre,
+        radius: reach + curtain,
+    }
+}
