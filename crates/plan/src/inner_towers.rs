@@ -44,11 +44,7 @@ pub(crate) fn find(
     el: &[Option<Label>],
     extent: f64,
 ) -> Vec<usize> {
-    let Some(court) = (0..fl.len())
-        .filter(|&c| fl[c] == Some(Label::Courtyard))
-        .map(|c| s.faces[c].area)
-        .max()
-    else {
+    let Some(court) = s.courtyard_area(fl) else {
         return Vec::new();
     };
     let curtain = curtain_thickness(s, el);

@@ -40,11 +40,7 @@ const RING_WALL: f64 = 0.7;
 /// beside a tower room of `fl` are returned in no group but in the second list: they are
 /// tower rooms of a tower already counted.
 pub(crate) fn find(s: &Scene, fl: &[Option<Label>], curtain: f64) -> (Vec<Vec<usize>>, Vec<usize>) {
-    let Some(court) = (0..fl.len())
-        .filter(|&c| fl[c] == Some(Label::Courtyard))
-        .map(|c| s.faces[c].area)
-        .max()
-    else {
+    let Some(court) = s.courtyard_area(fl) else {
         return (Vec::new(), Vec::new());
     };
     let rooms: Vec<usize> = (0..fl.len())

@@ -4,6 +4,7 @@
 //! (4') share. `Scene` and `FaceInfo` are re-exported from `plan::label`.
 
 use crate::graph::Graph;
+use crate::legend::Label;
 use crate::thin::Mask;
 
 /// Per-face measurements the heuristics use.
@@ -36,6 +37,16 @@ pub struct Scene<'a> {
     /// Faces on the outer wall at least this fraction of the courtyard's area are further
     /// wards ((5') in [`heuristics`](crate::label::heuristics)); 0 keeps one courtyard as §5.1.6 does.
     pub ward_ratio: f64,
+}
+
+impl Scene<'_> {
+    /// Area of the largest face labelled courtyard in `fl`; `None` without one.
+    pub(crate) fn courtyard_area(&self, fl: &[Option<Label>]) -> Option<usize> {
+        (0..fl.len())
+            .filter(|&c| fl[c] == Some(Label::Courtyard))
+            .map(|c| self.faces[c].area)
+            .max()
+    }
 }
 
 /// The farthest point of an edge's chain from its chord, as §5.1.6 (4)'s convexity test sees it.
