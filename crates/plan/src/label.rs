@@ -13,7 +13,7 @@ pub struct Labelling {
     pub faces: Vec<Label>,
     pub edges: Vec<Label>,
     pub warnings: Vec<String>,
-    /// Towers drawn as rings round rooms on the curtain ((5''), [`crate::ring_towers`]): the
+    /// Towers drawn as rings round rooms on the curtain ((5''), `ring_towers`): the
     /// rooms of each, which are tower rooms with no tower wall, counted once each.
     pub ring_towers: Vec<Vec<usize>>,
 }

@@ -36,8 +36,10 @@ pub struct ParsedPlan {
     /// Number of towers found: groups of tower-wall edges (§5.1.6 (4)) joined at a vertex,
     /// plus the bulge towers.
     pub towers: usize,
-    /// Towers found without a room: bulges of the castle's outline ([`bulges::find`]), then
-    /// compact thick ink standing out of the enceinte ([`crate::thick_towers::find`]).
+    /// Towers found on the pixels rather than as tower-wall edges: rings round tower rooms on
+    /// the curtain (`ring_towers`; centred in their room), bulges of the castle's outline
+    /// ([`bulges::find`]), then compact thick ink standing out of the enceinte
+    /// ([`crate::thick_towers::find`]); none inside a larger one's disc.
     pub bulge_towers: Vec<bulges::BulgeTower>,
     /// The wall chains §5.1.6 prunes ([`Spur`]).
     pub spurs: Vec<Spur>,
