@@ -73,6 +73,7 @@ pub mod synth;
 pub mod synth_styles;
 pub mod thick_towers;
 pub mod thin;
+mod union_find;
 
 use image::DynamicImage;
 
@@ -268,23 +269,15 @@ fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
 /// edges by the walls meeting it (Coucy: 5 towers, 18 tower-wall edges), so the edge count
 /// overstates the towers (docs/plan.md, development set).
 pub(crate) fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
-    let mut parent: Vec<usize> = (0..vertices).collect();
-    fn root(parent: &mut [usize], mut v: usize) -> usize {
-        while parent[v] != v {
-            parent[v] = parent[parent[v]];
-            v = parent[v];
-        }
-        v
-    }
+    let mut sets = union_find::UnionFind::new(vertices);
     let towers: Vec<&PlanEdge> = edges
         .iter()
         .filter(|e| e.label == Label::TowerWall)
         .collect();
     for e in &towers {
-        let (a, b) = (root(&mut parent, e.from), root(&mut parent, e.to));
-        parent[a] = b;
+        sets.union(e.from, e.to);
     }
-    let mut roots: Vec<usize> = towers.iter().map(|e| root(&mut parent, e.from)).collect();
+    let mut roots: Vec<usize> = towers.iter().map(|e| sets.root(e.from)).collect();
     roots.sort_unstable();
     roots.dedup();
     roots.len()

@@ -17,6 +17,7 @@
 use crate::bulges::BulgeTower;
 use crate::legend::Label;
 use crate::scene::{FaceInfo, Scene};
+use crate::union_find::UnionFind;
 
 /// A tower's room is at most this fraction of the courtyard's area.
 const SMALL_ROOM: f64 = 0.15;
@@ -54,29 +55,22 @@ pub(crate) fn find(s: &Scene, fl: &[Option<Label>], curtain: f64) -> (Vec<Vec<us
     let (of_known, new): (Vec<usize>, Vec<usize>) =
         rooms.into_iter().partition(|&f| beside_tower(f));
     // Rooms sharing a wall (an edge with both on its sides) are one tower.
-    let mut group: Vec<usize> = (0..new.len()).collect();
+    let mut sets = UnionFind::new(new.len());
     for fs in s.edge_faces {
         let on: Vec<usize> = (0..new.len()).filter(|&k| fs.contains(&new[k])).collect();
         for pair in on.windows(2) {
-            let (keep, merge) = (group[pair[0]], group[pair[1]]);
-            group
-                .iter_mut()
-                .filter(|g| **g == merge)
-                .for_each(|g| *g = keep);
+            sets.union(pair[0], pair[1]);
         }
     }
-    let mut ids = group.clone();
-    ids.sort_unstable();
-    ids.dedup();
-    let groups = ids
-        .into_iter()
-        .map(|id| {
-            (0..new.len())
-                .filter(|&k| group[k] == id)
-                .map(|k| new[k])
-                .collect()
-        })
-        .collect();
+    let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
+    for (k, &f) in new.iter().enumerate() {
+        let root = sets.root(k);
+        match groups.iter_mut().find(|(r, _)| *r == root) {
+            Some((_, rooms)) => rooms.push(f),
+            None => groups.push((root, vec![f])),
+        }
+    }
+    let groups = groups.into_iter().map(|(_, rooms)| rooms).collect();
     (groups, of_known)
 }
 
