@@ -4,11 +4,23 @@
 //! found; and the IoU of the wall mask chapter 5 parsed (`ParsedPlan::walls`, the learned wall
 //! ink or the rules' threshold after §5.1.2) and of Otsu's bare threshold, against the same
 //! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps] [--no-gates] [--trim-ink]
-//! [--rules]`.
+//! [--rules] [--ink-model FILE]`; `--ink-model` reads a wall-ink model written by `train_ink --out
+//! FILE` instead of the shipped one.
 
 use std::path::PathBuf;
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let ink_model = args
+        .iter()
+        .position(|a| a == "--ink-model")
+        .and_then(|k| args.get(k + 1))
+        .map(|f| {
+            let bytes = std::fs::read(f).unwrap_or_else(|e| panic!("{f}: {e}"));
+            std::sync::Arc::new(
+                plan::ink::WallInk::from_bytes(&bytes).unwrap_or_else(|e| panic!("{f}: {e}")),
+            )
+        });
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
     let opts = plan::Options {
@@ -20,6 +32,7 @@ fn main() {
         } else {
             plan::ink::InkMethod::Learned
         },
+        ink_model: ink_model.clone(),
         ..Default::default()
     };
     let limit: usize = std::env::args()
@@ -40,7 +53,7 @@ fn main() {
     println!("id\tprecision\trecall\tiou\tcourtyard\tfaces\tms\tmask_iou\totsu_iou\tink_iou");
     let (mut sum_iou, mut closed, mut n) = (0.0, 0, 0);
     let (mut sum_mask, mut sum_otsu, mut sum_ink) = (0.0, 0.0, 0.0);
-    let model = plan::ink::shipped();
+    let model = ink_model.unwrap_or_else(plan::ink::shipped);
     for id in &ids {
         let img = image::open(dir.join(format!("{id}.jpg"))).unwrap();
         let mask = image::open(dir.join(format!("{id}_wall.png")))

@@ -1,7 +1,8 @@
 //! Writes synthetic castle plan drawings in randomised draughting styles and their wall truth
 //! masks as PNG, to look at: `cargo run --release -p plan --example synth_styles -- OUTDIR 12`
 //! (OUTDIR/NNN.png the drawing, OUTDIR/NNN_walls.png the truth; optional third and fourth
-//! arguments: width and height, default 1200 × 900).
+//! arguments: width and height, default 1200 × 900; `FURNISHING=1` also draws the fittings of
+//! `StyleChoice::furnishing`).
 
 use std::path::PathBuf;
 
@@ -14,8 +15,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arg = |k: usize, d: u32| args.get(k).map_or(Ok(d), |s| s.parse::<u32>());
     let (n, w, h) = (arg(1, 12)?, arg(2, 1200)?, arg(3, 900)?);
     std::fs::create_dir_all(&dir)?;
+    let choice = plan::synth_styles::StyleChoice {
+        furnishing: std::env::var("FURNISHING").is_ok_and(|v| v == "1"),
+        ..Default::default()
+    };
     for seed in 0..n as u64 {
-        let p = plan::synth_styles::generate(seed, w, h);
+        let p = plan::synth_styles::generate_with(seed, w, h, &choice);
         p.image.save(dir.join(format!("{seed:03}.png")))?;
         p.walls.save(dir.join(format!("{seed:03}_walls.png")))?;
         let s = &p.style;

@@ -3,11 +3,13 @@
 //! (`crates/plan/data/wall_masks*.json`; needs `../shared/data/castle_drawings_pd`).
 //!
 //! `cargo run --release -p plan --example train_ink -- [--seed 1] [--synthetic 60] [--trees N]
-//! [--depth D] [--scarps] [--scarp-paper] [--far-paper PX] [--out crates/plan/models/wall_ink.bin]`.
+//! [--depth D] [--scarps] [--scarp-paper] [--far-paper PX] [--furnishing]
+//! [--out crates/plan/models/wall_ink.bin]`.
 //! The shipped model's recipe is `ink_data::SynthOptions::default` with 16 trees of depth 13;
 //! `--scarps` also draws hachured scarps and hachure bands against the synthetic walls,
 //! `--scarp-paper` samples the paper between their strokes as a pool of its own, `--far-paper
-//! PX` ignores the paper farther than PX from any ink on the drawings with scarps; `--trees`
+//! PX` ignores the paper farther than PX from any ink on the drawings with scarps,
+//! `--furnishing` draws fittings (stairs, tables, counters, doors' swings) inside the curtain; `--trees`
 //! and `--depth` size the forests (none of these in the shipped model: docs/plan.md).
 
 #[path = "common/ink_data.rs"]
@@ -56,6 +58,7 @@ fn main() {
             }
             "--scarps" => synth.scarps = true,
             "--scarp-paper" => synth.scarp_paper = true,
+            "--furnishing" => synth.furnishing = true,
             "--far-paper" => {
                 synth.far_paper = Some(
                     value("--far-paper")
@@ -66,7 +69,7 @@ fn main() {
             "--out" => out = PathBuf::from(value("--out")),
             _ => ink_data::fail(
                 &a,
-                "unknown argument (--seed, --synthetic, --trees, --depth, --scarps, --scarp-paper, --far-paper, --out)",
+                "unknown argument (--seed, --synthetic, --trees, --depth, --scarps, --scarp-paper, --far-paper, --furnishing, --out)",
             ),
         }
     }
@@ -90,6 +93,9 @@ fn main() {
     };
     if synth.scarps && synth.scarp_paper {
         scarps.push_str(", the paper between their strokes sampled apart");
+    }
+    if synth.furnishing {
+        scarps.push_str(" with fittings");
     }
     let provenance = format!(
         "seed {seed}; {synthetic} synthetic plans{scarps}; {} painted plans (crates/plan/data/wall_masks*.json)",

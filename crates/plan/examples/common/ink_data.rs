@@ -67,6 +67,8 @@ pub struct SynthOptions {
     /// Mark the paper inside the scarps ([`plan::synth_styles::StyledPlan::scarps`]) as
     /// [`paint::HARD_NOT_WALL`], a pool of its own in training.
     pub scarp_paper: bool,
+    /// Also draw fittings (stairs, tables, counters, doors' swings) inside the curtain.
+    pub furnishing: bool,
 }
 
 /// `n` synthetic drawings of long side 300–1600 px, seeded (the shipped model's recipe).
@@ -81,6 +83,7 @@ pub fn synthetic_with(n: usize, seed: u64, o: SynthOptions) -> Vec<Sheet> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5e7_0001);
     let choice = StyleChoice {
         scarps: o.scarps,
+        furnishing: o.furnishing,
         ..StyleChoice::default()
     };
     (0..n)

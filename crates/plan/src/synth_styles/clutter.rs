@@ -7,20 +7,22 @@ use std::f64::consts::PI;
 
 use rand::RngExt;
 
+use super::furnishing::furnishing;
 use super::geometry::{P, Rng, add, lerp, mul, rot, sub, u, unit};
 use super::layout::{Layout, Room};
 use super::moat::{hachure_bands, wall_hachures};
 use super::sheet::Sheet;
-use super::style::Clutter;
+use super::style::{Clutter, StyleChoice};
 use super::terrain::{contours, hachures};
 
 /// Draws some of every kind of clutter, each with some probability; returns the kinds drawn.
-/// Without `scarps` the kinds of `moat` are left out and draw no random numbers.
+/// Without `choice.scarps` the kinds of `moat`, and without `choice.furnishing` the fittings,
+/// are left out and draw no random numbers.
 pub(super) fn draw_clutter(
     sheet: &mut Sheet,
     lay: &Layout,
     rng: &mut Rng,
-    scarps: bool,
+    choice: &StyleChoice,
 ) -> Vec<Clutter> {
     type Draw = fn(&mut Sheet, &Layout, &mut Rng);
     let kinds: [(Clutter, f64, Draw); 14] = [
@@ -42,13 +44,17 @@ pub(super) fn draw_clutter(
     let mut drawn = Vec::new();
     let moat = [Clutter::WallHachures, Clutter::HachureBands];
     for (kind, p, f) in kinds {
-        if !scarps && moat.contains(&kind) {
+        if !choice.scarps && moat.contains(&kind) {
             continue;
         }
         if rng.random_bool(p) {
             f(sheet, lay, rng);
             drawn.push(kind);
         }
+    }
+    if choice.furnishing && rng.random_bool(0.7) {
+        furnishing(sheet, lay, rng);
+        drawn.push(Clutter::Furnishing);
     }
     drawn
 }

@@ -13,11 +13,12 @@
 //!
 //! Files: `style` (what a drawing holds and the choices a caller forces), `geometry` (points,
 //! the random source, pixel masks), `layout` (the castle), `sheet` (the clean drawing and its
-//! pens), `walls` (the wall styles), `clutter`, `terrain` and `moat` (what is never wall),
+//! pens), `walls` (the wall styles), `clutter`, `terrain`, `moat` and `furnishing` (what is never wall),
 //! `degrade`.
 
 mod clutter;
 mod degrade;
+mod furnishing;
 mod geometry;
 mod layout;
 mod moat;
@@ -77,7 +78,7 @@ fn draw(seed: u64, width: u32, height: u32, choice: &StyleChoice) -> (Sheet, Sty
         }
     }
 
-    let clutter = draw_clutter(&mut sheet, &lay, &mut rng, choice.scarps);
+    let clutter = draw_clutter(&mut sheet, &lay, &mut rng, choice);
     if !choice.clean {
         degrade(&mut sheet.img, &mut rng);
     }

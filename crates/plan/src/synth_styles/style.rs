@@ -57,6 +57,9 @@ pub enum Clutter {
     Title,
     Frame,
     Grid,
+    /// Stairs, tables, beds, counters, wells and doors with their swing, in thin line inside
+    /// the curtain.
+    Furnishing,
 }
 
 /// What was drawn.
@@ -84,4 +87,7 @@ pub struct StyleChoice {
     /// ([`Clutter::WallHachures`], [`Clutter::HachureBands`]); off by default, which draws
     /// exactly what the generator drew before they existed (the shipped model's recipe).
     pub scarps: bool,
+    /// Also draw fittings inside the curtain ([`Clutter::Furnishing`]); off by default, as
+    /// for `scarps`.
+    pub furnishing: bool,
 }

@@ -236,3 +236,50 @@ fn synth_styles_scarp_zones_hold_their_strokes_and_the_paper_between() {
         "a zone without scarps"
     );
 }
+
+#[test]
+fn synth_styles_fittings_inside_the_curtain_never_on_walls_only_when_asked() {
+    let asked = StyleChoice {
+        furnishing: true,
+        ..Default::default()
+    };
+    let drawn = (0..40)
+        .filter(|&s| {
+            generate_with(s, 200, 150, &asked)
+                .style
+                .clutter
+                .contains(&Clutter::Furnishing)
+        })
+        .count();
+    assert!((15..40).contains(&drawn), "fittings on {drawn} of 40");
+    assert!(
+        !(0..40).any(|s| generate(s, 200, 150)
+            .style
+            .clutter
+            .contains(&Clutter::Furnishing)),
+        "fittings drawn without being asked"
+    );
+    for seed in 0..8 {
+        let a = clutter_sheet(seed, super::furnishing::furnishing);
+        let b = clutter_sheet(seed, super::furnishing::furnishing);
+        assert_eq!(a.img, b.img, "seed {seed}: not deterministic");
+        let ink = a.clutter.count();
+        assert!(ink > 100, "seed {seed}: {ink} fitting pixels");
+        assert!(
+            !a.truth.m.iter().zip(&a.clutter.m).any(|(t, c)| *t && *c),
+            "seed {seed}: a fitting pixel on a wall"
+        );
+        // Fittings stand inside the curtain: their ink lies within the castle's box.
+        let mut rng = Rng::seed_from_u64(seed);
+        let lay = layout::layout(&mut rng, 400, 300, 6.0);
+        let (c, r) = (lay.centre, lay.radius);
+        let far = (0..a.clutter.m.len())
+            .filter(|&i| a.clutter.m[i])
+            .filter(|&i| {
+                let (x, y) = ((i % 400) as f64, (i / 400) as f64);
+                ((x - c.0) / r.0).hypot((y - c.1) / r.1) > 1.8
+            })
+            .count();
+        assert!(far * 20 <= ink, "seed {seed}: {far} of {ink} far outside");
+    }
+}
