@@ -2,7 +2,7 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--no-gates] [--trim-ink] [--no-inner-towers]
-//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--overlays DIR] [--all] [--closed]`; `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--overlays DIR] [--confusions] [--all] [--closed]`; `--confusions` lists each plan's wrong points (true → found); `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 #[path = "../tests/common/mod.rs"]
@@ -69,6 +69,16 @@ fn main() {
         scores.push(score(parsed.as_ref(), p, set.tolerance_px));
     }
     println!("{}", table(&scores));
+    if args_has("--confusions") {
+        for s in scores.iter().filter(|s| !s.confusions.is_empty()) {
+            let wrong: Vec<String> = s
+                .confusions
+                .iter()
+                .map(|(t, f)| format!("{} → {}", t.name(), f.name()))
+                .collect();
+            println!("{}: {}", s.file, wrong.join(", "));
+        }
+    }
     for (name, four) in [("4-bit grey 300-700 px", true), ("other scans", false)] {
         let part: Vec<_> = scores
             .iter()

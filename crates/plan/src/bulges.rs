@@ -25,6 +25,13 @@ pub struct BulgeTower {
 }
 
 impl BulgeTower {
+    /// The thickness of the tower's wall ring: the curtain's it studs (pixels; a third of the
+    /// radius without one), at most half the radius. One home for the plan's thick towers'
+    /// rooms ([`crate::thick_towers::rooms`]) and the model's towers (`integrate`).
+    pub fn wall_width(&self, curtain: Option<f64>) -> f64 {
+        curtain.unwrap_or(self.radius / 3.0).min(self.radius / 2.0)
+    }
+
     /// Row-major indices of the pixels of the tower's disc grown by a pixel, clipped to the
     /// `width` × `height` image: the pixels a tower marks as its walls.
     pub fn pixels(&self, width: u32, height: u32) -> impl Iterator<Item = usize> + use<> {

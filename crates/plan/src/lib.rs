@@ -503,6 +503,9 @@ fn parse_grey(
     if let Some(c) = curtain.filter(|_| opts.thick_towers) {
         let thick = thick_towers::find(&walls, &labels, c);
         mark_tower_walls(&mut labels, &walls, &thick, Label::is_wall);
+        if let Some(wall) = scale::outer_wall_thickness_of(&edges) {
+            thick_towers::rooms(&mut labels, walls.width, walls.height, &thick, wall);
+        }
         bulge_towers.extend(thick);
     }
     bulges::drop_nested(&mut bulge_towers);

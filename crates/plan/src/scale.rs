@@ -210,8 +210,14 @@ fn assumed_pixels_per_metre(plan: &ParsedPlan) -> (f64, String) {
 
 /// The outer walls' median thickness (plan pixels), if the plan has outer walls.
 pub fn outer_wall_thickness(plan: &ParsedPlan) -> Option<f64> {
-    let mut t: Vec<f64> = plan
-        .edges
+    outer_wall_thickness_of(&plan.edges)
+}
+
+/// [`outer_wall_thickness`] of a plan's edges: the drawing's scale, the model's walls and
+/// towers' rings, and the rooms of the plan's thick towers ([`crate::thick_towers::rooms`])
+/// all read the curtain so.
+pub fn outer_wall_thickness_of(edges: &[crate::PlanEdge]) -> Option<f64> {
+    let mut t: Vec<f64> = edges
         .iter()
         .filter(|e| e.label == Label::CastleOuterWall && e.thickness > 0.0)
         .map(|e| e.thickness)

@@ -78,6 +78,34 @@ pub fn find(walls: &Mask, labels: &[u8], curtain: f64) -> Vec<BulgeTower> {
         .collect()
 }
 
+/// A thick tower at least this many curtain thicknesses in radius (two curtains across) has a
+/// room: the drawing
+/// fills it (vaulted towers drawn black with white ribs, Villandraut; solid-drawn drum
+/// towers), but a tower that wide is not solid masonry. Swept on both annotated sets with
+/// 0.8, 1, 1.15, 1.3, 1.5 and 2 (docs/plan.md, "A room inside thick towers").
+const ROOM_FROM: f64 = 1.0;
+
+/// The room of each thick tower at least [`ROOM_FROM`] curtains in radius: the pixels of its
+/// disc inside its wall ring ([`BulgeTower::wall_width`], the ring the model builds) that are
+/// tower wall become tower room. `curtain`: the outer walls' median thickness
+/// ([`crate::scale::outer_wall_thickness_of`]), as the model takes it. Issue 26, departure from §5.1.6 (5), whose tower rooms are
+/// faces the drawing leaves open: the development set annotates a room at the heart of such
+/// towers (Villandraut's, drawn black with white vault ribs).
+pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
+    for t in towers.iter().filter(|t| t.radius >= ROOM_FROM * curtain) {
+        let room = BulgeTower {
+            center: t.center,
+            // `pixels` grows a disc by a pixel.
+            radius: t.radius - t.wall_width(Some(curtain)) - 1.0,
+        };
+        for i in room.pixels(width, height) {
+            if labels[i] == Label::TowerWall as u8 {
+                labels[i] = Label::TowerRoom as u8;
+            }
+        }
+    }
+}
+
 /// Whether any pixel of the tower's disc (its radius plus one) has the label.
 fn touches(t: &BulgeTower, labels: &[u8], width: u32, label: Label) -> bool {
     let height = (labels.len() / width as usize) as u32;
@@ -181,5 +209,35 @@ mod tests {
         let m = mask(100, 60, &[[0, 26, 99, 33]], &[[50.0, 30.0, 14.0]]);
         assert_eq!(find(&m, &surroundings(100, 60), 8.0).len(), 1);
         assert!(find(&m, &surroundings(100, 60), 20.0).is_empty());
+    }
+
+    #[test]
+    fn a_wide_thick_tower_has_its_room_inside_its_ring_and_a_narrow_one_none() {
+        // Curtain 8 px: a tower of radius 14 (≥ 8) gets a room inside a ring of
+        // min(8, 14 / 2) = 7 px; one of radius 7 stays solid.
+        let (w, h) = (100u32, 40u32);
+        let towers = [
+            BulgeTower {
+                center: [30.0, 20.0],
+                radius: 14.0,
+            },
+            BulgeTower {
+                center: [75.0, 20.0],
+                radius: 7.0,
+            },
+        ];
+        let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
+        rooms(&mut labels, w, h, &towers, 8.0);
+        let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
+        assert_eq!(at(30, 20), Label::TowerRoom, "the wide tower's centre");
+        assert_eq!(at(36, 20), Label::TowerRoom, "6 px out: inside the ring");
+        assert_eq!(at(38, 20), Label::TowerWall, "8 px out: the ring");
+        assert_eq!(at(75, 20), Label::TowerWall, "the narrow tower stays solid");
+        let room = labels
+            .iter()
+            .filter(|&&l| l == Label::TowerRoom as u8)
+            .count();
+        // The disc of radius 7 (inclusive): 149 pixels.
+        assert_eq!(room, 149);
     }
 }

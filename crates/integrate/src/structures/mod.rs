@@ -184,6 +184,7 @@ fn round_tower(
     role: Role,
     step: String,
     frame: &OutlineFrame,
+    plan: &ParsedPlan,
 ) -> Structure {
     let OutlineFrame {
         s,
@@ -192,7 +193,25 @@ fn round_tower(
         curtain_px,
     } = *frame;
     let keep_here = role == Role::Keep;
-    let wall_px = curtain_px.unwrap_or(b.radius / 3.0).min(b.radius / 2.0);
+    let wall_px = b.wall_width(curtain_px);
+    // A thick tower wide enough has its room in the plan's labels (`plan::thick_towers::rooms`,
+    // issue 26): it is built round its room, the ring as thick as the plan's.
+    let (cx, cy) = (b.center[0].round(), b.center[1].round());
+    let room = cx >= 0.0
+        && cy >= 0.0
+        && (cx as u32) < plan.width
+        && (cy as u32) < plan.height
+        && plan.label_at(cx as u32, cy as u32) == Label::TowerRoom;
+    let kind = if room {
+        Kind::HollowCylindrical
+    } else {
+        Kind::SolidCylindrical
+    };
+    let step = if room {
+        format!("{step}; hollow: the plan gives it a room inside its wall ring")
+    } else {
+        format!("{step}, solid")
+    };
     let mut provenance = BTreeMap::new();
     provenance.insert("footprint".to_string(), Provenance::new(image, step, None));
     provenance.insert(
@@ -200,8 +219,8 @@ fn round_tower(
         Provenance::new(
             image,
             match curtain_px {
-                Some(_) => "§5.1.4 median thickness of the outer walls (the curtain the tower studs), at most half the radius; inside it, fill",
-                None => "no outer wall: a third of the radius; inside it, fill",
+                Some(_) => "§5.1.4 median thickness of the outer walls (the curtain the tower studs), at most half the radius; inside it, fill or the room",
+                None => "no outer wall: a third of the radius; inside it, fill or the room",
             },
             None,
         ),
@@ -223,11 +242,11 @@ fn round_tower(
         ),
     );
     Structure {
-        children: hierarchy(&id, Kind::SolidCylindrical),
+        children: hierarchy(&id, kind),
         id,
         label: Label::TowerWall,
         role,
-        kind: Kind::SolidCylindrical,
+        kind,
         footprint: Footprint::Circle {
             center: [b.center[0] * s, b.center[1] * s],
             radius: b.radius * s,
@@ -538,10 +557,10 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
         let keep_here = keep == Some(rooms.len() + k);
         let role = if keep_here { Role::Keep } else { Role::Tower };
         let step = format!(
-            "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge, solid"
+            "§5.1.6 bulge tower {bi} of the castle's outline (plan::bulges, no room drawn): circle fitted to the bulge"
         );
         let id = next_id(role.name());
-        out.push(round_tower(b, id, role, step, &outline));
+        out.push(round_tower(b, id, role, step, &outline, plan));
     }
     for gate in gatehouses(&out, &heights, image, &mut next_id) {
         out.push(gate);
@@ -628,10 +647,10 @@ pub fn from_plan(plan: &ParsedPlan, image: &str, frame: &ModelScale) -> Vec<Stru
     if let Some(t) = curtain_px {
         for (k, b) in bare::towers(plan, &out, s, t).iter().enumerate() {
             let step = format!(
-                "round tower {k} of the outer wall that no other structure covers (issue 25): circle fitted to the edge of the bare wall towards the surroundings, solid"
+                "round tower {k} of the outer wall that no other structure covers (issue 25): circle fitted to the edge of the bare wall towards the surroundings"
             );
             let id = next_id(Role::Tower.name());
-            out.push(round_tower(b, id, Role::Tower, step, &outline));
+            out.push(round_tower(b, id, Role::Tower, step, &outline, plan));
         }
         // Issue 25: masses of wall nothing above covers (`bare::masses`), blocks of stone.
         for mass in bare::masses(plan, &out, s, t) {
