@@ -10,6 +10,9 @@
 //! as thick ink"). Here the distance from each wall pixel to the open space gives the wall's
 //! half-thickness; the pixels deeper than [`CORE`] curtains form each thick mass's core, and a
 //! core that is compact is a tower of the inscribed radius, centred on its deepest pixel.
+//!
+//! Departure from §5.1.6 (5), whose tower rooms are faces the drawing leaves open: a thick
+//! tower at least two curtains across has a room inside its wall ring ([`rooms`]).
 
 use raster::components::{Connectivity, components_where};
 
@@ -79,18 +82,19 @@ pub fn find(walls: &Mask, labels: &[u8], curtain: f64) -> Vec<BulgeTower> {
 }
 
 /// A thick tower at least this many curtain thicknesses in radius (two curtains across) has a
-/// room: the drawing
-/// fills it (vaulted towers drawn black with white ribs, Villandraut; solid-drawn drum
-/// towers), but a tower that wide is not solid masonry. Swept on both annotated sets with
-/// 0.8, 1, 1.15, 1.3, 1.5 and 2 (docs/plan.md, "A room inside thick towers").
+/// room: the drawing fills it (vaulted towers drawn black with white ribs, Villandraut;
+/// solid-drawn drum towers), but a tower that wide is rarely solid masonry. Swept on both
+/// annotated sets with 0.8, 1, 1.15, 1.3, 1.5 and 2 (docs/plan.md, "A room inside thick
+/// towers").
 const ROOM_FROM: f64 = 1.0;
 
 /// The room of each thick tower at least [`ROOM_FROM`] curtains in radius: the pixels of its
 /// disc inside its wall ring ([`BulgeTower::wall_width`], the ring the model builds) that are
 /// tower wall become tower room. `curtain`: the outer walls' median thickness
-/// ([`crate::scale::outer_wall_thickness_of`]), as the model takes it. Issue 26, departure from §5.1.6 (5), whose tower rooms are
-/// faces the drawing leaves open: the development set annotates a room at the heart of such
-/// towers (Villandraut's, drawn black with white vault ribs).
+/// ([`crate::scale::outer_wall_thickness_of`]), as the model takes it. Issue 26, departure
+/// from §5.1.6 (5), whose tower rooms are faces the drawing leaves open: the development set
+/// annotates a room at the heart of such towers (Villandraut's, drawn black with white vault
+/// ribs).
 pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
     for t in towers.iter().filter(|t| t.radius >= ROOM_FROM * curtain) {
         let room = BulgeTower {
