@@ -86,19 +86,19 @@ fn main() {
     params.forest.seed = seed;
     params.forest.trees = trees.unwrap_or(params.forest.trees);
     params.forest.max_depth = depth.unwrap_or(params.forest.max_depth);
-    let mut scarps = match (synth.scarps, synth.far_paper) {
+    let mut recipe = match (synth.scarps, synth.far_paper) {
         (false, _) => String::new(),
         (true, None) => " with scarps".to_string(),
         (true, Some(px)) => format!(" with scarps, paper over {px} px from ink ignored"),
     };
     if synth.scarps && synth.scarp_paper {
-        scarps.push_str(", the paper between their strokes sampled apart");
+        recipe.push_str(", the paper between their strokes sampled apart");
     }
     if synth.furnishing {
-        scarps.push_str(" with fittings");
+        recipe.push_str(" with fittings");
     }
     let provenance = format!(
-        "seed {seed}; {synthetic} synthetic plans{scarps}; {} painted plans (crates/plan/data/wall_masks*.json)",
+        "seed {seed}; {synthetic} synthetic plans{recipe}; {} painted plans (crates/plan/data/wall_masks*.json)",
         recipes.len()
     );
     let t = std::time::Instant::now();

@@ -76,6 +76,13 @@ impl ParsedPlan {
         Label::ALL[self.labels[(y * self.width + x) as usize] as usize]
     }
 
+    /// The label of the pixel nearest the point `p` (plan pixels), `None` off the drawing.
+    pub fn label_at_point(&self, p: [f64; 2]) -> Option<Label> {
+        let (x, y) = (p[0].round(), p[1].round());
+        (x >= 0.0 && y >= 0.0 && x < f64::from(self.width) && y < f64::from(self.height))
+            .then(|| self.label_at(x as u32, y as u32))
+    }
+
     /// The faces on each side of every edge (distinct, at most two), by edge index.
     pub fn faces_of_edges(&self) -> Vec<Vec<usize>> {
         let mut out = vec![Vec::new(); self.edges.len()];

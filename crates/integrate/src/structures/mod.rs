@@ -196,12 +196,7 @@ fn round_tower(
     let wall_px = b.wall_width(curtain_px);
     // A thick tower wide enough has its room in the plan's labels (`plan::thick_towers::rooms`,
     // issue 26): it is built round its room, the ring as thick as the plan's.
-    let (cx, cy) = (b.center[0].round(), b.center[1].round());
-    let room = cx >= 0.0
-        && cy >= 0.0
-        && (cx as u32) < plan.width
-        && (cy as u32) < plan.height
-        && plan.label_at(cx as u32, cy as u32) == Label::TowerRoom;
+    let room = plan.label_at_point(b.center) == Some(Label::TowerRoom);
     let kind = if room {
         Kind::HollowCylindrical
     } else {

@@ -401,14 +401,7 @@ pub(super) fn field_on_right(
     if closed && points.len() > 2 {
         pieces.push([points[points.len() - 1], points[0]]);
     }
-    let outside = |p: [f64; 2]| {
-        let (x, y) = (p[0].round(), p[1].round());
-        x >= 0.0
-            && y >= 0.0
-            && x < f64::from(plan.width)
-            && y < f64::from(plan.height)
-            && plan.label_at(x as u32, y as u32) == Label::CastleSurroundings
-    };
+    let outside = |p: [f64; 2]| plan.label_at_point(p) == Some(Label::CastleSurroundings);
     let mut balance = 0.0;
     for [a, b] in pieces {
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);

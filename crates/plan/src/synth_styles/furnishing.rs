@@ -57,16 +57,19 @@ impl Pen {
     fn line(&self, sheet: &mut Sheet, a: P, b: P) {
         sheet.line(self.to_sheet(a), self.to_sheet(b), self.lw, self.v);
     }
+    fn polyline(&self, sheet: &mut Sheet, pts: impl IntoIterator<Item = P>) {
+        let pts: Vec<P> = pts.into_iter().map(|p| self.to_sheet(p)).collect();
+        sheet.polyline(&pts, self.lw, self.v);
+    }
     /// The outline of the rectangle [x0, x1] × [y0, y1].
     fn rect(&self, sheet: &mut Sheet, x0: f64, y0: f64, x1: f64, y1: f64) {
-        let c = [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)];
-        c.windows(2).for_each(|s| self.line(sheet, s[0], s[1]));
+        self.polyline(sheet, [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]);
     }
     /// An arc of radius `r` about `c` from angle `a0` to `a1`, as short chords.
     fn arc(&self, sheet: &mut Sheet, c: P, r: f64, a0: f64, a1: f64) {
         let n = ((a1 - a0).abs() * r / 3.0).ceil().max(4.0) as usize;
         let at = |k: usize| add(c, rot((r, 0.0), a0 + (a1 - a0) * k as f64 / n as f64));
-        (0..n).for_each(|k| self.line(sheet, at(k), at(k + 1)));
+        self.polyline(sheet, (0..=n).map(at));
     }
 }
 
