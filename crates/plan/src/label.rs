@@ -94,8 +94,9 @@ pub fn heuristics(s: &Scene) -> Labelling {
             }
         }
     }
-    // (5'') towers drawn as a ring round a room on a long curtain (issue 26). Departure from
-    // §5.1.6 (4)-(5), whose tower rooms need a bulging tower wall; see `ring_towers`.
+    // (5'') towers drawn as a ring round a room on a long curtain, or standing free in a ward
+    // (issue 26). Departure from §5.1.6 (4)-(5), whose tower rooms need a bulging tower wall;
+    // see `ring_towers`.
     let mut ring_towers = Vec::new();
     if s.ring_towers {
         let curtain = crate::inner_towers::curtain_thickness(s, &el);

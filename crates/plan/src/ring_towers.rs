@@ -13,6 +13,14 @@
 //! surroundings over at most about a quarter of the directions; a tower standing out of the
 //! curtain over a half or more. Rooms that share a wall are one tower, and a room beside a
 //! tower room already found is that tower's (docs/plan.md, "Towers drawn as a ring").
+//!
+//! A round tower standing free — a keep in its ward (Coucy's donjon), a tower inside the
+//! enceinte (Bonaguil's, Pierrefonds') — is wrapped by no surroundings, and no wall of it
+//! bulges out of the castle, so the same departure takes a second kind of room (session 26,
+//! docs/plan.md, "Towers standing free"): a rounder one, from whose centre nearly every
+//! direction crosses a wall of about equal thickness, at least most of a curtain, before it
+//! reaches another face — a ring round the room, where a room of a range or of a block of
+//! masonry has thin partitions on some side.
 
 use crate::bulges::BulgeTower;
 use crate::legend::Label;
@@ -35,6 +43,20 @@ const REACH: f64 = 3.0;
 /// The median of the wall crossed by those directions is at least this many curtain
 /// thicknesses: a tower's ring, not the thin lines of a bank or a ditch (Borrans' rampart).
 const RING_WALL: f64 = 0.7;
+/// A free-standing tower's room is rounder than a ring tower's: area over π · inset² at most
+/// this (a disc 1, an octagon 1.05, a drawn square with filled corners about 1.2, a sharp one
+/// 1.27).
+const KEEP_ROUND: f64 = 1.25;
+/// Share of the directions from a free-standing tower's centre that must cross its wall into
+/// another face …
+const KEEP_WRAP: f64 = 0.9;
+/// … within its inset plus this many curtain thicknesses;
+const KEEP_REACH: f64 = 6.0;
+/// the thinnest tenth of the wall crossed is at least this many curtains thick …
+const KEEP_WALL: f64 = 0.8;
+/// … and this share of the median: a ring of even thickness round the room, not a room in a
+/// block of masonry or between a range's walls.
+const KEEP_EVEN: f64 = 0.7;
 
 /// Towers drawn as rings, given the face labels after §5.1.6 (5) (`fl`) and the curtain's
 /// thickness: each a group of faces (rooms sharing a wall), to be labelled tower rooms. Rooms
@@ -45,7 +67,10 @@ pub(crate) fn find(s: &Scene, fl: &[Option<Label>], curtain: f64) -> (Vec<Vec<us
         return (Vec::new(), Vec::new());
     };
     let rooms: Vec<usize> = (0..fl.len())
-        .filter(|&f| fl[f].is_none() && is_ring_room(s, fl, f, court, curtain))
+        .filter(|&f| {
+            fl[f].is_none()
+                && (is_ring_room(s, fl, f, court, curtain) || is_keep_room(s, f, court, curtain))
+        })
         .collect();
     let beside_tower = |f: usize| {
         s.edge_faces
@@ -107,6 +132,37 @@ fn is_ring_room(s: &Scene, fl: &[Option<Label>], f: usize, court: usize, curtain
     walls[walls.len() / 2] >= RING_WALL * curtain
 }
 
+/// Whether face `f` is the room of a round tower standing free (a keep in its ward, a tower
+/// inside the enceinte; module header): round, and from its centre nearly every direction
+/// crosses a wall at least a curtain thick, about equally thick all round, before it reaches
+/// another face.
+fn is_keep_room(s: &Scene, f: usize, court: usize, curtain: f64) -> bool {
+    let info = &s.faces[f];
+    let r = info.max_inset;
+    let area = info.area as f64;
+    if info.area == 0
+        || r < MIN_INSET * curtain
+        || area > SMALL_ROOM * court as f64
+        || area / (std::f64::consts::PI * r * r) > KEEP_ROUND
+    {
+        return false;
+    }
+    let centre = [info.sum[0] / area, info.sum[1] / area];
+    let mut walls: Vec<f64> = (0..RAYS)
+        .filter_map(|k| {
+            let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
+            let dir = [angle.cos(), angle.sin()];
+            wall_to_any_face(s, f, centre, dir, r + KEEP_REACH * curtain)
+        })
+        .collect();
+    if (walls.len() as f64) < KEEP_WRAP * RAYS as f64 {
+        return false;
+    }
+    walls.sort_by(f64::total_cmp);
+    let (low, median) = (walls[walls.len() / 10], walls[walls.len() / 2]);
+    low >= KEEP_WALL * curtain && low >= KEEP_EVEN * median
+}
+
 /// Walks from `from` along `dir` through face `f` and walls: the length of wall crossed when
 /// the first other open pixel within `reach` belongs to the surroundings (or the walk leaves
 /// the image), `None` otherwise.
@@ -157,4 +213,29 @@ pub(crate) fn disc(faces: &[FaceInfo], rooms: &[usize], curtain: f64) -> BulgeTo
         center: centre,
         radius: reach + curtain,
     }
+}
+
+/// Walks from `from` along `dir` through face `f` and walls: the length of wall crossed before
+/// the first open pixel of another face, or `None` when no other face lies within `reach` (the
+/// walk ran along a wall, or into the masonry of a thick block) or the walk leaves the image.
+fn wall_to_any_face(s: &Scene, f: usize, from: [f64; 2], dir: [f64; 2], reach: f64) -> Option<f64> {
+    let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
+    let mut wall = 0.0;
+    for step in 0..=reach.floor() as usize {
+        let t = step as f64;
+        let (x, y) = (
+            (from[0] + dir[0] * t).round() as i64,
+            (from[1] + dir[1] * t).round() as i64,
+        );
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return None;
+        }
+        let i = (y * w + x) as usize;
+        if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
+            wall += 1.0;
+        } else if s.face_of[i] as usize != f {
+            return Some(wall);
+        }
+    }
+    None
 }

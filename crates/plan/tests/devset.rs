@@ -47,13 +47,14 @@ fn measure(file: &str, ink: InkMethod) -> Option<Totals> {
     Some(Totals::of(&scores))
 }
 
-/// Floors at the figures measured (docs/plan.md, "Development set" and "Learned wall ink"),
-/// less a small margin for platform differences in resizing: (points right, exact towers).
+/// Floors at the figures measured (docs/plan.md; session 26: learned ink 145 / 4 and 132 / 6,
+/// rules 133 / 6 and 76 / 3), less a margin of five points and about two towers for platform
+/// differences in resizing: (points right, exact towers).
 const FLOORS: [(&str, InkMethod, usize, usize); 4] = [
-    ("tests/data/devset.json", InkMethod::Learned, 133, 1),
-    ("tests/data/devset.json", InkMethod::Rules, 121, 3),
-    ("tests/data/devset_more.json", InkMethod::Learned, 124, 2),
-    ("tests/data/devset_more.json", InkMethod::Rules, 69, 3),
+    ("tests/data/devset.json", InkMethod::Learned, 140, 2),
+    ("tests/data/devset.json", InkMethod::Rules, 128, 4),
+    ("tests/data/devset_more.json", InkMethod::Learned, 127, 4),
+    ("tests/data/devset_more.json", InkMethod::Rules, 71, 2),
 ];
 
 #[test]

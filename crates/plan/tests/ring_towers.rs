@@ -85,3 +85,52 @@ fn without_the_ring_test_the_rings_are_rooms_and_no_tower() {
         );
     }
 }
+
+/// Centre of the free-standing round tower in `enceinte_with_keep`, and of the thin-walled
+/// round room beside it.
+const KEEP: (f64, f64) = (200.0, 200.0);
+const THIN_ROUND_ROOM: (f64, f64) = (380.0, 200.0);
+
+/// The same enceinte with no tower on its curtain; in its courtyard a round keep of outer
+/// radius 30 and a 14-px ring (room radius 16), standing free, and a round room of the same
+/// size with a 9-px wall (a well house, a stair), which is no tower.
+fn enceinte_with_keep() -> DynamicImage {
+    let mut c = Canvas::new(560, 400);
+    c.poly(
+        &[(60.0, 60.0), (500.0, 60.0), (500.0, 340.0), (60.0, 340.0)],
+        12.0,
+    );
+    c.round_tower(KEEP, 30.0, 14.0);
+    c.round_tower(THIN_ROUND_ROOM, 25.0, 9.0);
+    DynamicImage::ImageLuma8(c.0)
+}
+
+#[test]
+fn a_round_tower_standing_free_in_the_courtyard_is_a_tower_a_thin_round_room_is_not() {
+    let opts = plan::Options {
+        upsample_below: 0,
+        ..Default::default()
+    };
+    let p = plan::parse(&enceinte_with_keep(), &opts).unwrap();
+    assert_eq!(p.towers, 1, "warnings {:?}", p.warnings);
+    let (x, y) = KEEP;
+    assert_eq!(p.label_at(x as u32, y as u32), Label::TowerRoom);
+    // The ring, 23 px from the centre, is the tower's wall.
+    assert_eq!(p.label_at(x as u32 + 23, y as u32), Label::TowerWall);
+    let t = &p.bulge_towers[0];
+    assert!((t.center[0] - x).hypot(t.center[1] - y) <= 1.0, "{t:?}");
+    let (x, y) = THIN_ROUND_ROOM;
+    // A room (the largest left, so the great hall), not a tower's.
+    assert_eq!(p.label_at(x as u32, y as u32), Label::GreatHall);
+    // Without the ring test the keep's room is no tower's either.
+    let p = plan::parse(
+        &enceinte_with_keep(),
+        &plan::Options {
+            ring_towers: false,
+            ..opts
+        },
+    )
+    .unwrap();
+    assert_eq!(p.towers, 0);
+    assert_ne!(p.label_at(KEEP.0 as u32, KEEP.1 as u32), Label::TowerRoom);
+}

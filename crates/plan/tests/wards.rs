@@ -57,8 +57,17 @@ fn a_tower_inside_the_enceinte_is_a_tower_when_inner_wards_are_tested() {
     let inner = parse(plan::Options::default());
     assert_eq!(inner.towers, 1, "warnings {:?}", inner.warnings);
     assert_eq!(inner.label_at(204, 150), Label::TowerRoom);
+    // Without the inner-ward test the ring test takes it as a round tower standing free in
+    // its ward (`tests/ring_towers.rs`); without both it is no tower.
+    let rings_only = parse(plan::Options {
+        inner_ward_towers: false,
+        ..Default::default()
+    });
+    assert_eq!(rings_only.towers, 1);
+    assert_eq!(rings_only.label_at(204, 150), Label::TowerRoom);
     let outer_only = parse(plan::Options {
         inner_ward_towers: false,
+        ring_towers: false,
         ..Default::default()
     });
     assert_eq!(outer_only.towers, 0);
@@ -128,14 +137,15 @@ fn inner_ward_with_building() -> GrayImage {
 
 #[test]
 fn the_towers_on_an_inner_ward_count_a_free_standing_building_does_not() {
-    let opts = |inner_ward_towers| plan::Options {
+    let opts = |inner_ward_towers, ring_towers| plan::Options {
         upsample_below: 0,
         close_gaps: false,
         inner_ward_towers,
+        ring_towers,
         ..Default::default()
     };
     let image = DynamicImage::ImageLuma8(inner_ward_with_building());
-    let p = plan::parse(&image, &opts(true)).unwrap();
+    let p = plan::parse(&image, &opts(true, true)).unwrap();
     // The four corner towers of the enceinte (§5.1.6 (4)) and the three of the inner ward.
     assert_eq!(
         p.towers,
@@ -159,8 +169,9 @@ fn the_towers_on_an_inner_ward_count_a_free_standing_building_does_not() {
         );
     }
     assert_eq!(p.label_at(200, 150), Label::Courtyard);
-    // Without the inner-ward test only the corner towers count.
-    let outer_only = plan::parse(&image, &opts(false)).unwrap();
+    // Without the inner-ward test and the ring test (which takes the inner ward's towers as
+    // round towers standing free) only the corner towers count.
+    let outer_only = plan::parse(&image, &opts(false, false)).unwrap();
     assert_eq!(outer_only.towers, 4);
     assert_ne!(outer_only.label_at(324, 170), Label::TowerRoom);
 }
