@@ -101,30 +101,16 @@ pub(crate) fn find(s: &Scene, fl: &[Option<Label>], curtain: f64) -> (Vec<Vec<us
 
 /// Whether face `f` is a room of a tower standing out of the curtain (module header).
 fn is_ring_room(s: &Scene, fl: &[Option<Label>], f: usize, court: usize, curtain: f64) -> bool {
-    let info = &s.faces[f];
-    let r = info.max_inset;
-    let area = info.area as f64;
-    if info.area == 0
-        || r < MIN_INSET * curtain
-        || area > SMALL_ROOM * court as f64
-        || area / (std::f64::consts::PI * r * r) > ROUND_ROOM
-    {
+    let Some((centre, r)) = tower_room_shape(s, f, court, curtain, ROUND_ROOM) else {
         return false;
-    }
-    let centre = [info.sum[0] / area, info.sum[1] / area];
-    let mut walls: Vec<f64> = (0..RAYS)
-        .filter_map(|k| {
-            let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
-            wall_to_surroundings(
-                s,
-                fl,
-                f,
-                centre,
-                [angle.cos(), angle.sin()],
-                r + REACH * curtain,
-            )
-        })
-        .collect();
+    };
+    let mut walls = walls_round(s, f, centre, r + REACH * curtain, |reached| match reached {
+        Reached::Off(wall) => Some(wall),
+        Reached::Face(g, wall) => {
+            (fl.get(g).copied().flatten() == Some(Label::CastleSurroundings)).then_some(wall)
+        }
+        Reached::Nothing => None,
+    });
     if (walls.len() as f64) < WRAP * RAYS as f64 {
         return false;
     }
@@ -134,27 +120,22 @@ fn is_ring_room(s: &Scene, fl: &[Option<Label>], f: usize, court: usize, curtain
 
 /// Whether face `f` is the room of a round tower standing free (a keep in its ward, a tower
 /// inside the enceinte; module header): round, and from its centre nearly every direction
-/// crosses a wall at least a curtain thick, about equally thick all round, before it reaches
-/// another face.
+/// crosses a wall, about equally thick all round and at least most of a curtain, before it
+/// reaches another face.
 fn is_keep_room(s: &Scene, f: usize, court: usize, curtain: f64) -> bool {
-    let info = &s.faces[f];
-    let r = info.max_inset;
-    let area = info.area as f64;
-    if info.area == 0
-        || r < MIN_INSET * curtain
-        || area > SMALL_ROOM * court as f64
-        || area / (std::f64::consts::PI * r * r) > KEEP_ROUND
-    {
+    let Some((centre, r)) = tower_room_shape(s, f, court, curtain, KEEP_ROUND) else {
         return false;
-    }
-    let centre = [info.sum[0] / area, info.sum[1] / area];
-    let mut walls: Vec<f64> = (0..RAYS)
-        .filter_map(|k| {
-            let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
-            let dir = [angle.cos(), angle.sin()];
-            wall_to_any_face(s, f, centre, dir, r + KEEP_REACH * curtain)
-        })
-        .collect();
+    };
+    let mut walls = walls_round(
+        s,
+        f,
+        centre,
+        r + KEEP_REACH * curtain,
+        |reached| match reached {
+            Reached::Face(_, wall) => Some(wall),
+            Reached::Off(_) | Reached::Nothing => None,
+        },
+    );
     if (walls.len() as f64) < KEEP_WRAP * RAYS as f64 {
         return false;
     }
@@ -163,17 +144,55 @@ fn is_keep_room(s: &Scene, f: usize, court: usize, curtain: f64) -> bool {
     low >= KEEP_WALL * curtain && low >= KEEP_EVEN * median
 }
 
-/// Walks from `from` along `dir` through face `f` and walls: the length of wall crossed when
-/// the first other open pixel within `reach` belongs to the surroundings (or the walk leaves
-/// the image), `None` otherwise.
-fn wall_to_surroundings(
+/// The centre of area and inset of face `f` when it is shaped like a tower's room: small
+/// against the courtyard, not a speck, and area over π · inset² at most `round`.
+fn tower_room_shape(
     s: &Scene,
-    fl: &[Option<Label>],
     f: usize,
-    from: [f64; 2],
-    dir: [f64; 2],
+    court: usize,
+    curtain: f64,
+    round: f64,
+) -> Option<([f64; 2], f64)> {
+    let info = &s.faces[f];
+    let r = info.max_inset;
+    let area = info.area as f64;
+    let shaped = info.area > 0
+        && r >= MIN_INSET * curtain
+        && area <= SMALL_ROOM * court as f64
+        && area / (std::f64::consts::PI * r * r) <= round;
+    shaped.then(|| ([info.sum[0] / area, info.sum[1] / area], r))
+}
+
+/// Where a walk from inside a room first reaches open paper outside it.
+enum Reached {
+    /// An open pixel of face `.0`, after `.1` pixels of wall.
+    Face(usize, f64),
+    /// The image's edge, after `.0` pixels of wall.
+    Off(f64),
+    /// Neither within the reach: the walk ran along a wall or into solid masonry.
+    Nothing,
+}
+
+/// The walls crossed in each of the `RAYS` directions from `centre` out of face `f`, within
+/// `reach`, as `keep` reads each walk's end (`None`: the direction does not count).
+fn walls_round(
+    s: &Scene,
+    f: usize,
+    centre: [f64; 2],
     reach: f64,
-) -> Option<f64> {
+    keep: impl Fn(Reached) -> Option<f64>,
+) -> Vec<f64> {
+    (0..RAYS)
+        .filter_map(|k| {
+            let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
+            keep(walk_out(s, f, centre, [angle.cos(), angle.sin()], reach))
+        })
+        .collect()
+}
+
+/// Walks from `from` along `dir` through face `f` and walls, counting the wall pixels, until
+/// the first open pixel of another face, the image's edge or `reach`.
+fn walk_out(s: &Scene, f: usize, from: [f64; 2], dir: [f64; 2], reach: f64) -> Reached {
     let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
     let mut wall = 0.0;
     for step in 0..=reach.floor() as usize {
@@ -183,17 +202,16 @@ fn wall_to_surroundings(
             (from[1] + dir[1] * t).round() as i64,
         );
         if x < 0 || y < 0 || x >= w || y >= h {
-            return Some(wall);
+            return Reached::Off(wall);
         }
         let i = (y * w + x) as usize;
         if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
             wall += 1.0;
         } else if s.face_of[i] as usize != f {
-            let face = fl.get(s.face_of[i] as usize).copied().flatten();
-            return (face == Some(Label::CastleSurroundings)).then_some(wall);
+            return Reached::Face(s.face_of[i] as usize, wall);
         }
     }
-    None
+    Reached::Nothing
 }
 
 /// A ring tower's disc, as the towers found on the pixels are kept ([`BulgeTower`]): round the
@@ -213,29 +231,4 @@ pub(crate) fn disc(faces: &[FaceInfo], rooms: &[usize], curtain: f64) -> BulgeTo
         center: centre,
         radius: reach + curtain,
     }
-}
-
-/// Walks from `from` along `dir` through face `f` and walls: the length of wall crossed before
-/// the first open pixel of another face, or `None` when no other face lies within `reach` (the
-/// walk ran along a wall, or into the masonry of a thick block) or the walk leaves the image.
-fn wall_to_any_face(s: &Scene, f: usize, from: [f64; 2], dir: [f64; 2], reach: f64) -> Option<f64> {
-    let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
-    let mut wall = 0.0;
-    for step in 0..=reach.floor() as usize {
-        let t = step as f64;
-        let (x, y) = (
-            (from[0] + dir[0] * t).round() as i64,
-            (from[1] + dir[1] * t).round() as i64,
-        );
-        if x < 0 || y < 0 || x >= w || y >= h {
-            return None;
-        }
-        let i = (y * w + x) as usize;
-        if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
-            wall += 1.0;
-        } else if s.face_of[i] as usize != f {
-            return Some(wall);
-        }
-    }
-    None
 }
