@@ -487,6 +487,8 @@ fn parse_grey(
         .map(|e| (e.thickness, e.points.len()))
         .collect();
     let curtain = bulges::curtain_thickness(&mut outer);
+    // The outer walls' median thickness, the curtain as the model reads it.
+    let outer_median = scale::outer_wall_thickness_of(&edges);
     // The ring towers' walls first, so that the outline's bulges on them are left out.
     let rings: Vec<bulges::BulgeTower> = labelling
         .ring_towers
@@ -495,7 +497,9 @@ fn parse_grey(
         .collect();
     mark_tower_walls(&mut labels, &walls, &rings, Label::is_wall);
     let mut bulge_towers = match curtain {
-        Some(c) if opts.bulge_towers => find_bulge_towers(&mut labels, &walls, c, &outer),
+        Some(c) if opts.bulge_towers => {
+            find_bulge_towers(&mut labels, &walls, c, outer_median.unwrap_or(0.0))
+        }
         _ => Vec::new(),
     };
     bulge_towers.extend(rings);
@@ -503,7 +507,7 @@ fn parse_grey(
     if let Some(c) = curtain.filter(|_| opts.thick_towers) {
         let thick = thick_towers::find(&walls, &labels, c);
         mark_tower_walls(&mut labels, &walls, &thick, Label::is_wall);
-        if let Some(wall) = scale::outer_wall_thickness_of(&edges) {
+        if let Some(wall) = outer_median {
             thick_towers::rooms(&mut labels, walls.width, walls.height, &thick, wall);
         }
         bulge_towers.extend(thick);
@@ -533,13 +537,12 @@ fn parse_grey(
 }
 
 /// Bulge towers of the outline, measured against the curtain's thickness `curtain` and the
-/// outer walls' median (`outer`: their (thickness, length) pairs sorted by thickness); their
-/// outer-wall pixels become tower walls.
+/// outer walls' median thickness `median`; their outer-wall pixels become tower walls.
 fn find_bulge_towers(
     labels: &mut [u8],
     walls: &Mask,
     curtain: f64,
-    outer: &[(f64, usize)],
+    median: f64,
 ) -> Vec<bulges::BulgeTower> {
     let mut towers = bulges::find(labels, walls.width, walls.height, curtain);
     // A letter or a dot drawn against the curtain bulges too, but a tower is wider than the
@@ -547,7 +550,6 @@ fn find_bulge_towers(
     // edges, as integration takes the curtain) were, on the development set, exactly the
     // letter O on Sully's plan and a dot on the Tower of London's (2.8 and 3.6 px against
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
-    let median = outer[outer.len() / 2].0;
     towers.retain(|t| t.radius >= 0.4 * median);
     mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
     towers
