@@ -11,7 +11,7 @@
 //! room no wider than 1.5 times that wall (docs/plan.md, "Inner-ward towers").
 
 use crate::legend::Label;
-use crate::scene::{Apex, Beyond, Scene, beyond_apex, bulge_apex};
+use crate::scene::{Apex, Reached, Scene, beyond_apex, bulge_apex};
 
 /// An inner ward's tower must bulge this fraction of its chord into the courtyard (an outer
 /// tower 0.25): walls inside the enceinte bend round stairs and halls more often than the
@@ -63,7 +63,7 @@ pub(crate) fn find(
             continue;
         };
         let into_courtyard = |f: usize| fl.get(f) == Some(&Some(Label::Courtyard));
-        if !matches!(beyond_apex(s, e, apex), Beyond::Face(f) if into_courtyard(f)) {
+        if !matches!(beyond_apex(s, e, apex), Reached::Face(f, _) if into_courtyard(f)) {
             continue;
         }
         let wall = bulge_wall_thickness(s, e, apex);

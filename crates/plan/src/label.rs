@@ -3,8 +3,8 @@
 //! rooms, great hall and its walls, chapel and its walls, unknown — then every pixel's label.
 
 pub use crate::legend::Label;
-use crate::scene::{Beyond, beyond_apex, bulge_apex};
 pub use crate::scene::{FaceInfo, Scene};
+use crate::scene::{Reached, beyond_apex, bulge_apex};
 use crate::thin::Mask;
 
 /// Labels of faces and edges, and what the heuristics could not find.
@@ -181,9 +181,9 @@ fn is_tower(
     bulge: f64,
 ) -> bool {
     bulge_apex(s, e, extent, bulge).is_some_and(|apex| match beyond_apex(s, e, apex) {
-        Beyond::Off => outside == Label::CastleSurroundings,
-        Beyond::Face(f) => fl.get(f).copied().flatten() == Some(outside),
-        Beyond::Wall => false,
+        Reached::Off(_) => outside == Label::CastleSurroundings,
+        Reached::Face(f, _) => fl.get(f).copied().flatten() == Some(outside),
+        Reached::Nothing => false,
     })
 }
 

@@ -24,7 +24,7 @@
 
 use crate::bulges::BulgeTower;
 use crate::legend::Label;
-use crate::scene::{FaceInfo, Scene};
+use crate::scene::{FaceInfo, Reached, Scene, walk};
 use crate::union_find::UnionFind;
 
 /// A tower's room is at most this fraction of the courtyard's area.
@@ -163,16 +163,6 @@ fn tower_room_shape(
     shaped.then(|| ([info.sum[0] / area, info.sum[1] / area], r))
 }
 
-/// Where a walk from inside a room first reaches open paper outside it.
-enum Reached {
-    /// An open pixel of face `.0`, after `.1` pixels of wall.
-    Face(usize, f64),
-    /// The image's edge, after `.0` pixels of wall.
-    Off(f64),
-    /// Neither within the reach: the walk ran along a wall or into solid masonry.
-    Nothing,
-}
-
 /// The walls crossed in each of the `RAYS` directions from `centre` out of face `f`, within
 /// `reach`, as `keep` reads each walk's end (`None`: the direction does not count).
 fn walls_round(
@@ -185,33 +175,10 @@ fn walls_round(
     (0..RAYS)
         .filter_map(|k| {
             let angle = k as f64 * std::f64::consts::TAU / RAYS as f64;
-            keep(walk_out(s, f, centre, [angle.cos(), angle.sin()], reach))
+            let dir = [angle.cos(), angle.sin()];
+            keep(walk(s, centre, dir, 0..=reach.floor() as usize, Some(f)))
         })
         .collect()
-}
-
-/// Walks from `from` along `dir` through face `f` and walls, counting the wall pixels, until
-/// the first open pixel of another face, the image's edge or `reach`.
-fn walk_out(s: &Scene, f: usize, from: [f64; 2], dir: [f64; 2], reach: f64) -> Reached {
-    let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
-    let mut wall = 0.0;
-    for step in 0..=reach.floor() as usize {
-        let t = step as f64;
-        let (x, y) = (
-            (from[0] + dir[0] * t).round() as i64,
-            (from[1] + dir[1] * t).round() as i64,
-        );
-        if x < 0 || y < 0 || x >= w || y >= h {
-            return Reached::Off(wall);
-        }
-        let i = (y * w + x) as usize;
-        if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
-            wall += 1.0;
-        } else if s.face_of[i] as usize != f {
-            return Reached::Face(s.face_of[i] as usize, wall);
-        }
-    }
-    Reached::Nothing
 }
 
 /// A ring tower's disc, as the towers found on the pixels are kept ([`BulgeTower`]): round the

@@ -91,35 +91,53 @@ pub(crate) fn bulge_apex(s: &Scene, e: usize, extent: f64, bulge: f64) -> Option
     })
 }
 
-/// What lies just beyond an apex, outwards through its wall.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Beyond {
-    /// Off the image: the surroundings.
-    Off,
-    Face(usize),
-    /// Wall further than the edge's thickness and 8 px.
-    Wall,
+/// Where a walk through the walls ([`walk`]) first reaches open paper.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Reached {
+    /// An open pixel of face `.0`, after `.1` pixels of wall.
+    Face(usize, f64),
+    /// The image's edge (the surroundings), after `.0` pixels of wall.
+    Off(f64),
+    /// Neither within the walk's steps: the walk ran along a wall or into solid masonry.
+    Nothing,
 }
 
-/// The face just beyond the apex, outwards through the wall.
-pub(crate) fn beyond_apex(s: &Scene, e: usize, apex: Apex) -> Beyond {
-    let (p, (nx, ny)) = (apex.point, apex.normal);
-    let w = s.walls.width as i32;
-    let h = s.walls.height as i32;
-    let reach = (s.thickness[e] + 8.0).ceil() as i32;
-    for k in 1..=reach {
-        let (qx, qy) = (
-            (p.0 + nx * k as f64).round() as i32,
-            (p.1 + ny * k as f64).round() as i32,
+/// Walks from `from` along the unit direction `dir`, at the whole steps `steps`, through wall
+/// pixels (counted) and the open pixels of face `through`, until the first open pixel of
+/// another face, the image's edge or the last step.
+pub(crate) fn walk(
+    s: &Scene,
+    from: [f64; 2],
+    dir: [f64; 2],
+    steps: std::ops::RangeInclusive<usize>,
+    through: Option<usize>,
+) -> Reached {
+    let (w, h) = (i64::from(s.walls.width), i64::from(s.walls.height));
+    let mut wall = 0.0;
+    for step in steps {
+        let t = step as f64;
+        let (x, y) = (
+            (from[0] + dir[0] * t).round() as i64,
+            (from[1] + dir[1] * t).round() as i64,
         );
-        if qx < 0 || qy < 0 || qx >= w || qy >= h {
-            return Beyond::Off;
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return Reached::Off(wall);
         }
-        let i = (qy * w + qx) as usize;
-        if s.skel.data[i] == 1 || s.walls.data[i] == 1 {
-            continue;
+        let i = (y * w + x) as usize;
+        let face = s.face_of[i] as usize;
+        if s.walls.data[i] == 1 || s.skel.data[i] == 1 {
+            wall += 1.0;
+        } else if Some(face) != through {
+            return Reached::Face(face, wall);
         }
-        return Beyond::Face(s.face_of[i] as usize);
     }
-    Beyond::Wall
+    Reached::Nothing
+}
+
+/// What lies just beyond the apex, outwards through the wall: `Nothing` when the wall goes on
+/// further than the edge's thickness and 8 px.
+pub(crate) fn beyond_apex(s: &Scene, e: usize, apex: Apex) -> Reached {
+    let (p, (nx, ny)) = (apex.point, apex.normal);
+    let reach = (s.thickness[e] + 8.0).ceil() as usize;
+    walk(s, [p.0, p.1], [nx, ny], 1..=reach, None)
 }
