@@ -83,7 +83,11 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
         min_width: 2.0 * args.min_radius,
         min_height: 3.0 * args.min_radius,
         hatching: args.hatching.then(HatchParams::default),
-        ..GothicParams::default()
+        ..if args.text_grouping {
+            GothicParams::without_issue_23()
+        } else {
+            GothicParams::default()
+        }
     };
     if let Some(t) = &args.training {
         let training = read_training(t, img)?;
@@ -187,6 +191,12 @@ pub struct GothicArgs {
     /// elements are at least twice as wide and three times as tall.
     #[arg(long, default_value_t = 8.0, value_parser = crate::flags::positive)]
     pub min_radius: f64,
+    /// §4.2's element organisation as the dissertation states it: groups by (h, w, v) on one
+    /// sill line, enclosing arches from its proposals only; issue 23's departures (the
+    /// enclosing-arch grid, door and disc starts, repetition, the joint fit from the best
+    /// member, groups by head, slivers) off. See docs/gothic.md.
+    #[arg(long)]
+    pub text_grouping: bool,
     /// Engravings: replace parallel hatching and coursing strokes by their tone before the
     /// edges, so hatched openings show their outline (off for photographs).
     #[arg(long)]

@@ -216,13 +216,17 @@ fn organise_with_progress(
             .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
         let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
-        // Departure from §4.2: groups by box and rise, split by spacing (issue 23).
-        let rise = params.repetition.then_some(RISE_FACTOR);
-        let mut clusters: Vec<Vec<usize>> =
-            group::cluster_with(&shapes, params.group_relative, params.group_absolute, rise)
-                .into_iter()
-                .map(|c| c.iter().map(|&k| free[k]).collect())
-                .collect();
+        // Departure from §4.2: groups by box and rise, or by head, split by spacing (issue 23).
+        let likeness = likeness(params);
+        let mut clusters: Vec<Vec<usize>> = group::cluster_with(
+            &shapes,
+            params.group_relative,
+            params.group_absolute,
+            likeness,
+        )
+        .into_iter()
+        .map(|c| c.iter().map(|&k| free[k]).collect())
+        .collect();
         if params.repetition {
             clusters = by_spacing(
                 dt,
@@ -236,17 +240,18 @@ fn organise_with_progress(
         if clusters.is_empty() {
             break;
         }
-        let total = clusters.len();
-        for (done, members) in clusters.into_iter().enumerate() {
+        let mut queue: std::collections::VecDeque<Vec<usize>> = clusters.into();
+        let mut done = 0;
+        while let Some(members) = queue.pop_front() {
             progress(Progress::Organising {
                 level: level + 1,
                 of: params.max_levels,
                 done,
-                total,
+                total: done + queue.len() + 1,
             });
-            let thetas: Vec<Theta> = members.iter().map(|&i| items[i].theta).collect();
-            let joint = maximise_group(dt, &thetas, params.step, params.bounds(), params.max_iters);
-            let fits: Vec<_> = joint.iter().map(|t| fit(dt, t, params.step)).collect();
+            done += 1;
+            // Departure from §4.2: also from the best member's shape (issue 23, `joint_fit`).
+            let (joint, fits) = joint_fit(dt, &items, &members, params);
             // Self-similar only if every member stays significant with the shared shape and
             // fits it nearly as well as its own: otherwise no group.
             let similar = fits.iter().zip(&members).all(|(f, &i)| {
@@ -254,6 +259,23 @@ fn organise_with_progress(
                 detect::significant(f, params) && f.mean_distance <= (1.5 * own).max(own + 0.2)
             });
             if !similar {
+                // A loose cluster that is not self-similar may still hold twins by their
+                // boxes: they are tried on their own.
+                if let group::Likeness::Loose { rise_factor } = likeness {
+                    let shapes: Vec<Theta> = members.iter().map(|&i| items[i].theta).collect();
+                    let boxes = group::Likeness::Box { rise_factor };
+                    for c in group::cluster_with(
+                        &shapes,
+                        params.group_relative,
+                        params.group_absolute,
+                        boxes,
+                    ) {
+                        let c: Vec<usize> = c.iter().map(|&k| members[k]).collect();
+                        if c != members && !rejected.contains(&c) {
+                            queue.push_back(c);
+                        }
+                    }
+                }
                 rejected.push(members);
                 continue;
             }
@@ -461,6 +483,74 @@ fn kept<T>(v: Vec<T>, keep: &[bool]) -> Vec<T> {
         .filter(|(_, k)| **k)
         .map(|(x, _)| x)
         .collect()
+}
+
+/// How the clusters of §4.2 are formed under `params` ([`group::Likeness`]): by shape as the
+/// text does, or (issue 23) by box and rise with `repetition`, and also by head with
+/// `group_by_heads`.
+fn likeness(params: &GothicParams) -> group::Likeness {
+    match (params.repetition, params.group_by_heads) {
+        (false, _) => group::Likeness::Shape,
+        (true, false) => group::Likeness::Box {
+            rise_factor: RISE_FACTOR,
+        },
+        (true, true) => group::Likeness::Loose {
+            rise_factor: RISE_FACTOR,
+        },
+    }
+}
+
+/// §4.2's joint re-estimation of a group: one shared shape (h, w, v) and one position per
+/// member, by CG from the members' mean shape; returns the shapes and their fits.
+///
+/// Departure from §4.2 (issue 23, `GothicParams::joint_from_best`): a member fitted wrong
+/// (a sill caught 5 px low on a mortar joint, a lancet fitted 30 px wide beside its 23-px
+/// twin) pulls the mean shape away, and CG from there stays in the wrong optimum: the
+/// group is refused, or accepted with every member wrong. So the fit is also started from
+/// the best-fitting member's shape and sill line, each member about its own centre, and
+/// whichever start fits the members better in all (summed mean distance) is kept.
+fn joint_fit(
+    dt: &DistanceMap,
+    items: &[Candidate],
+    members: &[usize],
+    params: &GothicParams,
+) -> (Vec<Theta>, Vec<likelihood::Fit>) {
+    let from = |start: &[Theta]| {
+        let joint = maximise_group(dt, start, params.step, params.bounds(), params.max_iters);
+        let fits: Vec<likelihood::Fit> = joint.iter().map(|t| fit(dt, t, params.step)).collect();
+        (joint, fits)
+    };
+    let thetas: Vec<Theta> = members.iter().map(|&i| items[i].theta).collect();
+    let mean_start = from(&thetas);
+    if !params.joint_from_best {
+        return mean_start;
+    }
+    let Some(best) = members
+        .iter()
+        .min_by(|&&a, &&b| {
+            items[a]
+                .fit
+                .mean_distance
+                .total_cmp(&items[b].fit.mean_distance)
+        })
+        .map(|&i| items[i].theta)
+    else {
+        return mean_start;
+    };
+    let start: Vec<Theta> = thetas
+        .iter()
+        .map(|t| Theta {
+            x0: t.x0 + (t.w - best.w) / 2.0,
+            ..best
+        })
+        .collect();
+    let best_start = from(&start);
+    let total = |fits: &[likelihood::Fit]| fits.iter().map(|f| f.mean_distance).sum::<f64>();
+    if total(&best_start.1) < total(&mean_start.1) {
+        best_start
+    } else {
+        mean_start
+    }
 }
 
 /// Where an arc meets its jambs tangentially the springing line barely moves the contour, so

@@ -53,6 +53,15 @@ pub struct GothicParams {
     /// jumps, and members proposed where it repeats ([`repeat`](super::repeat)). `false`:
     /// groups by (h, w, v) and sill line only.
     pub repetition: bool,
+    /// Issue 23, departure from §4.2: a group's joint re-estimation also starts from its
+    /// best-fitting member's shape and sill line, and keeps the start that fits the members
+    /// better (`joint_fit` in the module). `false`: from the mean shape only.
+    pub joint_from_best: bool,
+    /// Issue 23, departure from §4.2 (with `repetition`): elements with the same head on one
+    /// apex line, or the same width on one sill line, are tried as a group
+    /// ([`group::Likeness::Loose`](super::group::Likeness)); refused, its twins by box are
+    /// tried. `false`: by box and sill line only.
+    pub group_by_heads: bool,
     /// Relative tolerance on the spacing: a spacing more than (1 + this) × its neighbour's is
     /// a jump; a gap within this share of k spacings holds k − 1 missing members.
     pub spacing_tolerance: f64,
@@ -85,6 +94,8 @@ impl Default for GothicParams {
             enclosing_grid: true,
             more_starts: true,
             repetition: true,
+            joint_from_best: true,
+            group_by_heads: true,
             spacing_tolerance: 0.25,
             sliver_of_group: 0.5,
             sliver_of_parent: 0.15,
@@ -94,13 +105,16 @@ impl Default for GothicParams {
 
 impl GothicParams {
     /// The defaults without issue 23's departures (the enclosing-arch grid, the rectangle and
-    /// disc starts, repetition, slivers): §4.2's grouping and enclosing proposals as they were
+    /// disc starts, repetition, the joint fit from the best member, groups by head, slivers):
+    /// §4.2's grouping and enclosing proposals as they were
     /// before, for comparison.
     pub fn without_issue_23() -> GothicParams {
         GothicParams {
             enclosing_grid: false,
             more_starts: false,
             repetition: false,
+            joint_from_best: false,
+            group_by_heads: false,
             sliver_of_group: 0.0,
             sliver_of_parent: 0.0,
             ..GothicParams::default()
