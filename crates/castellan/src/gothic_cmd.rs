@@ -318,6 +318,7 @@ mod training_tests {
             depth: 0.05,
             px_per_unit: 100.0,
             min_radius: 8.0,
+            text_grouping: false,
             hatching: false,
             training: Some(tfile),
             classifier: facade::classify::Method::Gmm,
