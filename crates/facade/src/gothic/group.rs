@@ -5,9 +5,8 @@ use super::element::Theta;
 
 /// Whether two shapes are the same up to `rel` of the larger size plus `abs` px.
 pub fn similar(a: &Theta, b: &Theta, rel: f64, abs: f64) -> bool {
-    let close = |x: f64, y: f64, scale: f64| (x - y).abs() <= rel * scale + abs;
-    let size = a.w.max(b.w).max(a.h + a.v).max(b.h + b.v);
-    close(a.w, b.w, size) && close(a.h, b.h, size) && close(a.v, b.v, size)
+    let tol = tolerance(a, b, rel, abs);
+    (a.w - b.w).abs() <= tol && (a.h - b.h).abs() <= tol && (a.v - b.v).abs() <= tol
 }
 
 /// How [`cluster_with`] tells two shapes alike.
