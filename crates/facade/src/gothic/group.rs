@@ -45,17 +45,12 @@ pub fn similar_head(a: &Theta, b: &Theta, rel: f64, abs: f64, rise_factor: f64) 
     let tol = tolerance(a, b, rel, abs);
     (a.w - b.w).abs() <= tol
         && (a.v - b.v).abs() <= rise_factor * tol
-        && (apex(a) - apex(b)).abs() <= tol
+        && (a.apex() - b.apex()).abs() <= tol
 }
 
 /// The tolerance of two shapes: `rel` of the larger size plus `abs` px.
 fn tolerance(a: &Theta, b: &Theta, rel: f64, abs: f64) -> f64 {
     rel * a.w.max(b.w).max(a.h + a.v).max(b.h + b.v) + abs
-}
-
-/// The apex's y.
-fn apex(t: &Theta) -> f64 {
-    t.y0 - t.h - t.v
 }
 
 /// [`cluster`] with the shapes compared as `likeness` says. `Box`: departure from §4.2 (issue

@@ -215,18 +215,9 @@ fn organise_with_progress(
         let free: Vec<usize> = (0..items.len())
             .filter(|&i| group_of[i].is_none() && !pinned[i])
             .collect();
-        let shapes: Vec<Theta> = free.iter().map(|&i| items[i].theta).collect();
         // Departure from §4.2: groups by box and rise, or by head, split by spacing (issue 23).
         let likeness = likeness(params);
-        let mut clusters: Vec<Vec<usize>> = group::cluster_with(
-            &shapes,
-            params.group_relative,
-            params.group_absolute,
-            likeness,
-        )
-        .into_iter()
-        .map(|c| c.iter().map(|&k| free[k]).collect())
-        .collect();
+        let mut clusters = cluster_items(&items, &free, likeness, params);
         if params.repetition {
             clusters = by_spacing(
                 dt,
@@ -262,15 +253,8 @@ fn organise_with_progress(
                 // A loose cluster that is not self-similar may still hold twins by their
                 // boxes: they are tried on their own.
                 if let group::Likeness::Loose { rise_factor } = likeness {
-                    let shapes: Vec<Theta> = members.iter().map(|&i| items[i].theta).collect();
                     let boxes = group::Likeness::Box { rise_factor };
-                    for c in group::cluster_with(
-                        &shapes,
-                        params.group_relative,
-                        params.group_absolute,
-                        boxes,
-                    ) {
-                        let c: Vec<usize> = c.iter().map(|&k| members[k]).collect();
+                    for c in cluster_items(&items, &members, boxes, params) {
                         if c != members && !rejected.contains(&c) {
                             queue.push_back(c);
                         }
@@ -498,6 +482,25 @@ fn likeness(params: &GothicParams) -> group::Likeness {
             rise_factor: RISE_FACTOR,
         },
     }
+}
+
+/// The clusters ([`group::cluster_with`]) among the items at `indices`, as item indices.
+fn cluster_items(
+    items: &[Candidate],
+    indices: &[usize],
+    likeness: group::Likeness,
+    params: &GothicParams,
+) -> Vec<Vec<usize>> {
+    let shapes: Vec<Theta> = indices.iter().map(|&i| items[i].theta).collect();
+    group::cluster_with(
+        &shapes,
+        params.group_relative,
+        params.group_absolute,
+        likeness,
+    )
+    .into_iter()
+    .map(|c| c.iter().map(|&k| indices[k]).collect())
+    .collect()
 }
 
 /// §4.2's joint re-estimation of a group: one shared shape (h, w, v) and one position per
