@@ -82,10 +82,11 @@ pub fn classifier(s: &str) -> Result<facade::classify::Method, String> {
 }
 
 /// How the plan's walls are read (ch. 5): `learned` (the default, the learned wall ink of
-/// issue 26) or `rules` (§5.1.2's threshold with the hand-tuned clean-up of issue 11).
+/// issue 26), `network` (the wall-ink network, issue 26) or `rules` (§5.1.2's threshold with
+/// the hand-tuned clean-up of issue 11).
 pub fn ink(s: &str) -> Result<plan::ink::InkMethod, String> {
     serde_json::from_value(serde_json::Value::String(s.trim().to_string())).map_err(|_| {
-        format!("'{s}' is not a way to read walls: use learned (the default) or rules")
+        format!("'{s}' is not a way to read walls: use learned (the default), network or rules")
     })
 }
 

@@ -164,9 +164,11 @@ pub struct PlanArgs {
     /// threshold, after §5.1.2's open/close.
     #[arg(long, value_name = "WALLS.png")]
     pub walls: Option<PathBuf>,
-    /// How the walls are read: `learned` (a wall-ink model trained on synthetic and painted
-    /// plans, issue 26) or `rules` (§5.1.2's threshold with the clean-up steps below, which
-    /// act on it only; see docs/plan.md).
+    /// How the walls are read: `learned` (a wall-ink forest trained on synthetic and painted
+    /// plans, issue 26), `network` (a small convolutional network trained on the same
+    /// drawings: sharper walls, better on modern plans, fewer points right on castle plans) or
+    /// `rules` (§5.1.2's threshold with the clean-up steps below, which act on it only; see
+    /// docs/plan.md).
     #[arg(long, default_value = "learned", value_parser = crate::flags::ink)]
     pub ink: plan::ink::InkMethod,
     /// Drawing scale in metres per pixel; the model comes out in metres.
@@ -303,6 +305,8 @@ mod flag_tests {
             (a.ink, a.walls),
             (InkMethod::Rules, Some(PathBuf::from("w.png")))
         );
+        let a = plan_args(&["--ink", "network"]).unwrap();
+        assert_eq!(a.ink, InkMethod::Network);
         let e = plan_args(&["--ink", "otsu"]).unwrap_err().to_string();
         assert!(e.contains("'otsu' is not a way to read walls"), "{e}");
     }

@@ -73,6 +73,24 @@ fn parses_sully_and_writes_every_output() {
         .success();
     let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(rules).unwrap()).unwrap();
     assert!(doc["towers"].as_u64().unwrap() >= 3);
+    // The wall-ink network reads the moat lines as paper and finds Sully's round towers (7 of
+    // its 6 in session 28, a courtyard and the great hall).
+    let network = out("network.json");
+    castellan()
+        .args(["plan", "--ink", "network", "-o"])
+        .arg(&network)
+        .arg(&input)
+        .assert()
+        .success();
+    let net: serde_json::Value = serde_json::from_slice(&std::fs::read(network).unwrap()).unwrap();
+    assert!(net["towers"].as_u64().unwrap() >= 4, "{}", net["towers"]);
+    let labels: Vec<&str> = net["faces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|f| f["label"].as_str())
+        .collect();
+    assert!(labels.contains(&"courtyard") && labels.contains(&"tower_room"));
     for e in doc["edges"].as_array().unwrap() {
         assert!(!e["points"].as_array().unwrap().is_empty());
         assert!(["line", "arc"].contains(&e["fit"]["type"].as_str().unwrap()));

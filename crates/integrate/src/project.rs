@@ -485,6 +485,11 @@ plan_points = [[10, 10], [20, 20]]
             Project::from_toml(&rules).unwrap().plan_options().ink,
             InkMethod::Rules
         );
+        let network = GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"network\"");
+        assert_eq!(
+            Project::from_toml(&network).unwrap().plan_options().ink,
+            InkMethod::Network
+        );
         let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"otsu\""))
             .unwrap_err()
             .to_string();

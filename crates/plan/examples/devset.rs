@@ -2,7 +2,7 @@
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
 //! [-- --no-close-gaps] [--no-gates] [--trim-ink] [--no-inner-towers]
-//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--overlays DIR] [--confusions] [--all] [--closed]`; `--confusions` lists each plan's wrong points (true → found); `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
+//! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--net] [--ink-net FILE] [--overlays DIR] [--confusions] [--all] [--closed]`; `--confusions` lists each plan's wrong points (true → found); `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--net` parses with the wall-ink network, `--ink-net` with a network written by `train_net --out FILE`; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
 #[path = "../tests/common/mod.rs"]
@@ -41,9 +41,17 @@ fn main() {
         dashes: !args.iter().any(|a| a == "--no-dashes"),
         ink: if args.iter().any(|a| a == "--rules") {
             plan::ink::InkMethod::Rules
+        } else if args.iter().any(|a| a == "--net") || arg_value("--ink-net").is_some() {
+            plan::ink::InkMethod::Network
         } else {
             plan::ink::InkMethod::Learned
         },
+        ink_net: arg_value("--ink-net").map(|f| {
+            let bytes = std::fs::read(&f).unwrap_or_else(|e| panic!("{f}: {e}"));
+            std::sync::Arc::new(
+                plan::ink::net::WallNet::from_bytes(&bytes).unwrap_or_else(|e| panic!("{f}: {e}")),
+            )
+        }),
         ink_model: arg_value("--ink-model").map(|f| {
             let bytes = std::fs::read(&f).unwrap_or_else(|e| panic!("{f}: {e}"));
             std::sync::Arc::new(

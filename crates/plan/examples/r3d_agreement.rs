@@ -4,8 +4,9 @@
 //! found; and the IoU of the wall mask chapter 5 parsed (`ParsedPlan::walls`, the learned wall
 //! ink or the rules' threshold after §5.1.2) and of Otsu's bare threshold, against the same
 //! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps] [--no-gates] [--trim-ink]
-//! [--rules] [--ink-model FILE]`; `--ink-model` reads a wall-ink model written by `train_ink --out
-//! FILE` instead of the shipped one.
+//! [--rules] [--ink-model FILE] [--net] [--ink-net FILE]`; `--ink-model` reads a wall-ink model written by `train_ink --out
+//! FILE` instead of the shipped one; `--net` parses with the wall-ink network (and its own
+//! mask is the network's), `--ink-net` reads a network written by `train_net --out FILE`.
 
 use std::path::PathBuf;
 
@@ -21,6 +22,14 @@ fn main() {
                 plan::ink::WallInk::from_bytes(&bytes).unwrap_or_else(|e| panic!("{f}: {e}")),
             )
         });
+    let ink_net = std::sync::Arc::new(match args.iter().position(|a| a == "--ink-net") {
+        Some(k) => {
+            let f = args.get(k + 1).expect("--ink-net needs a file");
+            let bytes = std::fs::read(f).unwrap_or_else(|e| panic!("{f}: {e}"));
+            plan::ink::net::WallNet::from_bytes(&bytes).unwrap_or_else(|e| panic!("{f}: {e}"))
+        }
+        None => plan::ink::net::WallNet::shipped().expect("the shipped network"),
+    });
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/data/r3d_floorplans_deepfloorplan/newyork/test");
     let opts = plan::Options {
@@ -29,10 +38,13 @@ fn main() {
         trim_ink: std::env::args().any(|a| a == "--trim-ink"),
         ink: if std::env::args().any(|a| a == "--rules") {
             plan::ink::InkMethod::Rules
+        } else if std::env::args().any(|a| a == "--net" || a == "--ink-net") {
+            plan::ink::InkMethod::Network
         } else {
             plan::ink::InkMethod::Learned
         },
         ink_model: ink_model.clone(),
+        ink_net: Some(ink_net.clone()),
         ..Default::default()
     };
     let limit: usize = std::env::args()
@@ -74,7 +86,11 @@ fn main() {
         let mask_iou = iou_of(&mask, |x, y| p.walls.get(x as i32, y as i32) != 0);
         let otsu_iou = iou_of(&mask, |x, y| grey.get_pixel(x, y)[0] < level);
         let (w, h) = grey.dimensions();
-        let prob = model.wall_probability(&grey, w, h);
+        let prob = if opts.ink == plan::ink::InkMethod::Network {
+            ink_net.wall_probability(&grey, w, h)
+        } else {
+            model.wall_probability(&grey, w, h)
+        };
         let ink_iou = iou_of(&mask, |x, y| prob[(y * w + x) as usize] > 0.5);
         sum_ink += ink_iou;
         sum_mask += mask_iou;

@@ -1,5 +1,5 @@
 //! Time of each step of the parse on the 3000 × 2000 synthetic scan (what the benchmark spends
-//! where): the learned wall ink alone, then every step of the parse after it on that mask and
+//! where): the learned wall ink alone (and the wall-ink network's), then every step of the parse after it on that mask and
 //! on the rules' threshold (median of `--runs N`, default 3), then whole parses.
 //! Run: `cargo run --release -p plan --example stage_times [-- --runs N] [--mask FILE]
 //! [--steps-only]`; `--mask` reads the learned mask from FILE (written there first when
@@ -45,6 +45,13 @@ fn main() {
             mask
         }
     };
+    let network = plan::Options {
+        ink: plan::ink::InkMethod::Network,
+        ..Default::default()
+    };
+    let t = Instant::now();
+    let _ = plan::learned_mask_of(&img, &network).unwrap();
+    println!("wall-ink network (mask) {:?}", t.elapsed());
     let rules = plan::Options {
         ink: plan::ink::InkMethod::Rules,
         ..Default::default()

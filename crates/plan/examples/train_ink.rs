@@ -73,12 +73,7 @@ fn main() {
             ),
         }
     }
-    let Some(data) = ink_data::data_dir() else {
-        ink_data::fail(
-            "../shared/data/castle_drawings_pd",
-            "not found: the painted plans live there",
-        )
-    };
+    let data = ink_data::painted_data_dir();
     let recipes = ink_data::recipes();
     let mut sheets = ink_data::synthetic_with(synthetic, seed, synth);
     sheets.extend(recipes.iter().map(|r| ink_data::painted_sheet(&data, r)));

@@ -154,6 +154,8 @@ pub struct Options {
     pub ink: ink::InkMethod,
     /// The learned ink's model; `None`: the one that ships ([`ink::shipped`]).
     pub ink_model: Option<std::sync::Arc<ink::WallInk>>,
+    /// The wall-ink network with `ink = Network`; `None`: the one that ships ([`ink::shipped_net`]).
+    pub ink_net: Option<std::sync::Arc<ink::net::WallNet>>,
     /// The user's "wall" / "not wall" strokes, which refine the learned ink for this drawing
     /// ([`ink::refine`]); drawing pixels.
     pub ink_strokes: Vec<ink::refine::InkStroke>,
@@ -183,6 +185,7 @@ impl Default for Options {
             dashes: true,
             ink: ink::InkMethod::Learned,
             ink_model: None,
+            ink_net: None,
             ink_strokes: Vec::new(),
             seed: 0,
         }
@@ -245,7 +248,7 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
         )
     };
     let mut parsed = parsed;
-    if opts.trim_ink && opts.ink == ink::InkMethod::Learned {
+    if opts.trim_ink && opts.ink != ink::InkMethod::Rules {
         parsed.pre.trimmed_pixels =
             ink::trim::walls_to_drawing(&grey, &mut parsed.labels, &mut parsed.walls);
     }
@@ -297,7 +300,17 @@ fn learned_mask(
     ink::refine::check(&opts.ink_strokes, w, h).map_err(PlanError::Strokes)?;
     let model = opts.ink_model.clone().unwrap_or_else(ink::shipped);
     let (wk, hk) = (w * k, h * k);
-    let p = ink::refine::wall_probability(&model, grey, &opts.ink_strokes, opts.seed, wk, hk);
+    let net = (opts.ink == ink::InkMethod::Network)
+        .then(|| opts.ink_net.clone().unwrap_or_else(ink::shipped_net));
+    let p = ink::refine::wall_probability(
+        &model,
+        net.as_deref(),
+        grey,
+        &opts.ink_strokes,
+        opts.seed,
+        wk,
+        hk,
+    );
     Ok(Some(image::GrayImage::from_fn(wk, hk, |x, y| {
         let wall = p[(y * wk + x) as usize] > ink::WALL_THRESHOLD;
         image::Luma([if wall { 255 } else { 0 }])

@@ -130,6 +130,7 @@ pub fn corrected_stage(
     };
     let how = match ink {
         plan::ink::InkMethod::Learned => "learned wall ink",
+        plan::ink::InkMethod::Network => "wall-ink network",
         plan::ink::InkMethod::Rules => "threshold and clean-up rules",
     };
     let walls = Overlay {

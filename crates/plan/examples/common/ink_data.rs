@@ -19,6 +19,17 @@ pub fn data_dir() -> Option<PathBuf> {
     d.is_dir().then_some(d)
 }
 
+/// [`data_dir`], or the end of a training run that needs the painted plans and finds none.
+#[allow(dead_code)] // the trainers use it, ink_eval does not
+pub fn painted_data_dir() -> PathBuf {
+    data_dir().unwrap_or_else(|| {
+        fail(
+            "../shared/data/castle_drawings_pd",
+            "not found: the painted plans live there",
+        )
+    })
+}
+
 /// Every painted recipe (`crates/plan/data/wall_masks*.json`, in name order).
 pub fn recipes() -> Vec<Recipe> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data");

@@ -8,6 +8,8 @@
 //! - [`train`]: training a model from drawings with wall masks.
 //! - [`refine`]: the user's "wall" / "not wall" strokes refine the model for one drawing.
 pub mod model;
+pub mod net;
+pub mod net_train;
 pub mod paint;
 pub mod refine;
 pub mod train;
@@ -26,6 +28,9 @@ pub enum InkMethod {
     /// hand-tuned clean-up (issue 26, docs/plan.md "Learned wall ink").
     #[default]
     Learned,
+    /// The wall-ink network ([`net::WallNet`]): P(wall) of a small convolutional network,
+    /// then as `Learned` (issue 26, docs/plan.md "The wall-ink network").
+    Network,
     /// §5.1.2's threshold with the clean-up chain of issue 11 (`castellan plan --ink rules`).
     Rules,
 }
@@ -44,6 +49,16 @@ pub fn shipped() -> Arc<WallInk> {
     SHIPPED
         .get_or_init(|| {
             Arc::new(WallInk::shipped().expect("the shipped model is checked by its test"))
+        })
+        .clone()
+}
+
+/// The network that ships with castellan, decoded once.
+pub fn shipped_net() -> Arc<net::WallNet> {
+    static SHIPPED: OnceLock<Arc<net::WallNet>> = OnceLock::new();
+    SHIPPED
+        .get_or_init(|| {
+            Arc::new(net::WallNet::shipped().expect("the shipped network is checked by its test"))
         })
         .clone()
 }

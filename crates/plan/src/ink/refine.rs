@@ -3,7 +3,8 @@
 //! drawing's own features plus the shipped model's wall map (as context), from the stroked
 //! pixels and, as pseudo-labels, pixels the model is sure of away from the strokes; so a
 //! correction spreads to everything on the sheet that looks like what was stroked, and the
-//! rest keeps the model's answer.
+//! rest keeps the model's answer. With the wall-ink network (`--ink network`) the network's
+//! map is the context and the fallback, and the forest's filter bank gives the features.
 
 use pixelclass::{Forest, ForestParams};
 use rand::{RngExt, SeedableRng};
@@ -11,6 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use super::model::{WallInk, smoothed_context, wall_class, with_context, working_size};
+use super::net::WallNet;
 use super::paint::near_segment;
 
 /// At most this many strokes and points per stroke (a request is bounded).
@@ -93,8 +95,11 @@ fn stroked(strokes: &[InkStroke], w: u32, h: u32, ws: u32, hs: u32) -> Vec<(usiz
 
 /// P(wall) of every pixel of `grey` at `out_w` × `out_h`, the model refined by `strokes`
 /// (checked with [`check`]); without strokes, the model's own map.
+///
+/// `net`: the wall-ink network, whose map then stands for the forest's.
 pub fn wall_probability(
     model: &WallInk,
+    net: Option<&WallNet>,
     grey: &image::GrayImage,
     strokes: &[InkStroke],
     seed: u64,
@@ -102,12 +107,18 @@ pub fn wall_probability(
     out_h: u32,
 ) -> Vec<f32> {
     if strokes.is_empty() {
-        return model.wall_probability(grey, out_w, out_h);
+        return match net {
+            Some(n) => n.wall_probability(grey, out_w, out_h),
+            None => model.wall_probability(grey, out_w, out_h),
+        };
     }
     let (w, h) = grey.dimensions();
     let (ws, hs) = working_size(w, h, &model.working);
     let mut f = model.features(grey);
-    let map = model.working_map(&mut f);
+    let map = match net {
+        Some(n) => n.two_class_map(grey, &model.working),
+        None => model.working_map(&mut f),
+    };
     let f = with_context(f, &map, &smoothed_context(&[1.0, 3.0, 8.0]));
     let user = stroked(strokes, w, h, ws, hs);
     let mut near = vec![false; f.width * f.height];
@@ -235,7 +246,7 @@ mod tests {
             ],
         }];
         check(&strokes, w, h).unwrap();
-        let after = wall_probability(&model, &test.grey, &strokes, 1, w, h);
+        let after = wall_probability(&model, None, &test.grey, &strokes, 1, w, h);
         assert!(at(&after) > 0.5, "P(wall) under the stroke {}", at(&after));
         let frame = (10..80)
             .filter(|&fx| after[(12 * w + fx) as usize] > 0.5)
@@ -247,7 +258,7 @@ mod tests {
         // Same strokes, same seed: same map.
         assert_eq!(
             after,
-            wall_probability(&model, &test.grey, &strokes, 1, w, h)
+            wall_probability(&model, None, &test.grey, &strokes, 1, w, h)
         );
     }
 }
