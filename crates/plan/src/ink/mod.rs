@@ -6,7 +6,10 @@
 //! - [`model`]: the trained classifier ([`WallInk`]: filter bank, one or two forests), its
 //!   file format, and P(wall) of every pixel of a drawing.
 //! - [`train`]: training a model from drawings with wall masks.
-//! - [`refine`]: the user's "wall" / "not wall" strokes refine the model for one drawing.
+//! - [`net`]: the wall-ink network ([`net::WallNet`], `--ink network`): a small U-Net over the
+//!   same grey, its file format, and P(wall) of every pixel; [`net_train`]: training it.
+//! - [`refine`]: the user's "wall" / "not wall" strokes refine the model (or the network's
+//!   map) for one drawing.
 pub mod model;
 pub mod net;
 pub mod net_train;

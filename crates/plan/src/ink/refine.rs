@@ -223,6 +223,17 @@ mod tests {
 
     #[test]
     fn a_wall_stroke_on_a_letter_makes_it_wall_and_the_frame_stays() {
+        letter_stroked_as_wall(None);
+    }
+
+    #[test]
+    fn the_strokes_refine_the_network_too() {
+        letter_stroked_as_wall(Some(&crate::ink::shipped_net()));
+    }
+
+    /// A wall stroke on a letter of the toy sheet, refining the toy forest or, given `net`,
+    /// the network read through the toy forest's features.
+    fn letter_stroked_as_wall(net: Option<&WallNet>) {
         let model = toy_model();
         let test = sheet(9);
         let (w, h) = test.grey.dimensions();
@@ -231,7 +242,7 @@ mod tests {
             .flat_map(|x| (16..50u32).map(move |y| (x, y)))
             .find(|&(x, y)| (0..5).all(|k| test.grey.get_pixel(x, y + k)[0] < 128))
             .unwrap();
-        let before = model.wall_probability(&test.grey, w, h);
+        let before = wall_probability(&model, net, &test.grey, &[], 1, w, h);
         let at = |p: &[f32]| p[((y + 2) * w + x) as usize];
         assert!(
             at(&before) < 0.5,
@@ -246,7 +257,7 @@ mod tests {
             ],
         }];
         check(&strokes, w, h).unwrap();
-        let after = wall_probability(&model, None, &test.grey, &strokes, 1, w, h);
+        let after = wall_probability(&model, net, &test.grey, &strokes, 1, w, h);
         assert!(at(&after) > 0.5, "P(wall) under the stroke {}", at(&after));
         let frame = (10..80)
             .filter(|&fx| after[(12 * w + fx) as usize] > 0.5)
@@ -258,7 +269,7 @@ mod tests {
         // Same strokes, same seed: same map.
         assert_eq!(
             after,
-            wall_probability(&model, None, &test.grey, &strokes, 1, w, h)
+            wall_probability(&model, net, &test.grey, &strokes, 1, w, h)
         );
     }
 }
