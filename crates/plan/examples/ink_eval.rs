@@ -83,11 +83,14 @@ fn main() {
         let (mut learned, mut otsu) = ([0usize; 3], [0usize; 3]);
         for sh in &held {
             let (w, h) = sh.grey.dimensions();
-            add(
+            ink_data::add(
                 &mut learned,
                 confusion(&model.wall_probability(&sh.grey, w, h), &sh.truth),
             );
-            add(&mut otsu, confusion(&otsu_map(&sh.grey), &sh.truth));
+            ink_data::add(
+                &mut otsu,
+                confusion(&ink_data::otsu_map(&sh.grey), &sh.truth),
+            );
         }
         let plans: Vec<&(DevPlan, u32)> = dev
             .iter()
@@ -101,8 +104,8 @@ fn main() {
             "| {} | {} | {} / {} | {} | {} / {} of {} | {} / {} | ({:.0} s)",
             source,
             held.len(),
-            iou(learned),
-            iou(otsu),
+            ink_data::iou(learned),
+            ink_data::iou(otsu),
             plans.len(),
             l.right,
             r.right,
@@ -130,8 +133,8 @@ fn main() {
     println!(
         "| all | {} | {} / {} | {} | {} / {} of {} | {} / {} |",
         painted.len(),
-        iou([sum[0], sum[1], sum[2]]),
-        iou([sum[3], sum[4], sum[5]]),
+        ink_data::iou([sum[0], sum[1], sum[2]]),
+        ink_data::iou([sum[3], sum[4], sum[5]]),
         sum[11],
         sum[6],
         sum[7],
@@ -139,27 +142,6 @@ fn main() {
         sum[9],
         sum[10]
     );
-}
-
-fn add(acc: &mut [usize; 3], c: (usize, usize, usize)) {
-    acc[0] += c.0;
-    acc[1] += c.1;
-    acc[2] += c.2;
-}
-
-fn iou(c: [usize; 3]) -> String {
-    if c[0] + c[1] + c[2] == 0 {
-        return "—".into();
-    }
-    format!("{:.3}", c[0] as f64 / (c[0] + c[1] + c[2]) as f64)
-}
-
-/// Otsu's ink as a 0/1 "probability" map: the baseline the learned ink must beat.
-fn otsu_map(grey: &image::GrayImage) -> Vec<f32> {
-    let level = plan::binarize::threshold_level(grey);
-    grey.pixels()
-        .map(|p| if p[0] < level { 1.0 } else { 0.0 })
-        .collect()
 }
 
 /// Points and towers with the learned ink of `model`, or with the rule chain (`None`).

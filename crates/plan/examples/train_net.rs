@@ -14,8 +14,7 @@ mod ink_data;
 use std::path::PathBuf;
 
 use plan::ink::net_train::{NetParams, train_net};
-use plan::ink::paint::{IGNORE, WALL};
-use plan::ink::train::source_of;
+use plan::ink::train::{confusion, source_of};
 
 fn main() {
     let mut np = NetParams::default();
@@ -111,33 +110,38 @@ fn report(net: &plan::ink::net::WallNet, held: &[(String, String, plan::ink::tra
     }
     println!("| held-out drawing | wall IoU, network | Otsu |");
     println!("| --- | --- | --- |");
-    let mut by_source: std::collections::BTreeMap<&str, [usize; 6]> = Default::default();
+    // Per book: the network's sums, then Otsu's.
+    let mut by_source: std::collections::BTreeMap<&str, [[usize; 3]; 2]> = Default::default();
     for (file, source, sheet) in held {
         let (w, h) = sheet.grey.dimensions();
         let p = net.wall_probability(&sheet.grey, w, h);
-        let level = plan::binarize::threshold_level(&sheet.grey);
-        let a = confusion(|i| p[i] > 0.5, sheet.truth.as_raw());
-        let b = confusion(|i| sheet.grey.as_raw()[i] < level, sheet.truth.as_raw());
-        println!("| {file} | {:.3} | {:.3} |", iou(a), iou(b));
-        let sum = by_source.entry(source).or_default();
-        (0..3).for_each(|k| {
-            sum[k] += a[k];
-            sum[3 + k] += b[k];
-        });
-    }
-    let mut all = [0usize; 6];
-    for (source, sum) in &by_source {
-        println!(
-            "| {source} | {:.3} | {:.3} |",
-            iou([sum[0], sum[1], sum[2]]),
-            iou([sum[3], sum[4], sum[5]])
+        let (a, b) = (
+            confusion(&p, &sheet.truth),
+            confusion(&ink_data::otsu_map(&sheet.grey), &sheet.truth),
         );
-        (0..6).for_each(|k| all[k] += sum[k]);
+        println!(
+            "| {file} | {} | {} |",
+            ink_data::iou([a.0, a.1, a.2]),
+            ink_data::iou([b.0, b.1, b.2])
+        );
+        let sum = by_source.entry(source).or_default();
+        ink_data::add(&mut sum[0], a);
+        ink_data::add(&mut sum[1], b);
+    }
+    let mut all = [[0usize; 3]; 2];
+    for (source, [n, o]) in &by_source {
+        println!(
+            "| {source} | {} | {} |",
+            ink_data::iou(*n),
+            ink_data::iou(*o)
+        );
+        ink_data::add(&mut all[0], (n[0], n[1], n[2]));
+        ink_data::add(&mut all[1], (o[0], o[1], o[2]));
     }
     println!(
-        "| all held out | {:.3} | {:.3} |",
-        iou([all[0], all[1], all[2]]),
-        iou([all[3], all[4], all[5]])
+        "| all held out | {} | {} |",
+        ink_data::iou(all[0]),
+        ink_data::iou(all[1])
     );
 }
 
@@ -146,25 +150,4 @@ where
     T::Err: std::fmt::Display,
 {
     v.parse().unwrap_or_else(|e| ink_data::fail(name, e))
-}
-
-/// True positives, false positives and false negatives of `ours` against a painted mask.
-fn confusion(ours: impl Fn(usize) -> bool, truth: &[u8]) -> [usize; 3] {
-    let mut c = [0usize; 3];
-    for (i, &t) in truth.iter().enumerate() {
-        if t == IGNORE {
-            continue;
-        }
-        match (ours(i), t == WALL) {
-            (true, true) => c[0] += 1,
-            (true, false) => c[1] += 1,
-            (false, true) => c[2] += 1,
-            _ => {}
-        }
-    }
-    c
-}
-
-fn iou(c: [usize; 3]) -> f64 {
-    c[0] as f64 / (c[0] + c[1] + c[2]).max(1) as f64
 }

@@ -153,6 +153,32 @@ fn ignore_far_paper(grey: &GrayImage, truth: &mut GrayImage, far: u8) {
     }
 }
 
+/// Adds a [`plan::ink::train::confusion`] to a running sum.
+#[allow(dead_code)] // ink_eval and train_net use it, train_ink does not
+pub fn add(acc: &mut [usize; 3], c: (usize, usize, usize)) {
+    acc[0] += c.0;
+    acc[1] += c.1;
+    acc[2] += c.2;
+}
+
+/// IoU of summed confusions, as a table cell ("—" when there is nothing to score).
+#[allow(dead_code)] // ink_eval and train_net use it, train_ink does not
+pub fn iou(c: [usize; 3]) -> String {
+    if c[0] + c[1] + c[2] == 0 {
+        return "—".into();
+    }
+    format!("{:.3}", c[0] as f64 / (c[0] + c[1] + c[2]) as f64)
+}
+
+/// Otsu's ink as a 0/1 "probability" map: the baseline the learned ink must beat.
+#[allow(dead_code)] // ink_eval and train_net use it, train_ink does not
+pub fn otsu_map(grey: &GrayImage) -> Vec<f32> {
+    let level = plan::binarize::threshold_level(grey);
+    grey.pixels()
+        .map(|p| if p[0] < level { 1.0 } else { 0.0 })
+        .collect()
+}
+
 pub fn fail(what: &str, e: impl std::fmt::Display) -> ! {
     eprintln!("{what}: {e}");
     std::process::exit(1);

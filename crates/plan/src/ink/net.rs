@@ -211,44 +211,38 @@ impl WallNet {
         WallNet::from_bytes(SHIPPED_NET)
     }
 
-    /// P(wall) of every pixel of `grey` at the working resolution (width, height, values).
-    pub fn working_map(&self, grey: &GrayImage) -> (usize, usize, Vec<f32>) {
-        let (x, w, h) = input(grey, &self.working);
-        let p = self.logits(&x, w, h);
-        (w, h, p.iter().map(|&z| 1.0 / (1.0 + (-z).exp())).collect())
+    /// P(wall) of every pixel of `grey` (one class) at the resolution `working` gives.
+    fn wall_map(&self, grey: &GrayImage, working: &Working) -> pixelclass::Probabilities {
+        let (x, w, h) = input(grey, working);
+        let data = self
+            .logits(&x, w, h)
+            .iter()
+            .map(|&z| 1.0 / (1.0 + (-z).exp()))
+            .collect();
+        pixelclass::Probabilities {
+            width: w,
+            height: h,
+            classes: 1,
+            data,
+        }
     }
 
     /// P(not wall) and P(wall) of every pixel of `grey` at the resolution `working` gives (a
     /// forest's), as the forest's maps are laid out: the context of the user's strokes
     /// ([`super::refine`]).
     pub fn two_class_map(&self, grey: &GrayImage, working: &Working) -> pixelclass::Probabilities {
-        let (x, w, h) = input(grey, working);
-        let data = self
-            .logits(&x, w, h)
-            .iter()
-            .flat_map(|&z| {
-                let p = 1.0 / (1.0 + (-z).exp());
-                [1.0 - p, p]
-            })
-            .collect();
+        let wall = self.wall_map(grey, working);
         pixelclass::Probabilities {
-            width: w,
-            height: h,
             classes: 2,
-            data,
+            data: wall.data.iter().flat_map(|&p| [1.0 - p, p]).collect(),
+            ..wall
         }
     }
 
     /// P(wall) of every pixel of `grey`, at `out_w` × `out_h` (the drawing's size or a
     /// multiple of it).
     pub fn wall_probability(&self, grey: &GrayImage, out_w: u32, out_h: u32) -> Vec<f32> {
-        let (w, h, p) = self.working_map(grey);
-        let map = pixelclass::Probabilities {
-            width: w,
-            height: h,
-            classes: 1,
-            data: p,
-        };
+        let map = self.wall_map(grey, &self.working);
         pixelclass::resample::enlarge(&map, out_w as usize, out_h as usize).data
     }
 

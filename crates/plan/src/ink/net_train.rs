@@ -23,8 +23,8 @@ pub struct NetParams {
     pub batch: usize,
     /// Side of a crop (working pixels; a multiple of 8).
     pub crop: usize,
+    /// AdamW's learning rate; it falls to a quarter for the last third of the steps.
     pub learning_rate: f64,
-    /// The learning rate falls to a quarter for the last third of the steps.
     pub weight_decay: f64,
     /// Weight of a wall pixel in the loss (paper and other ink weigh 1).
     pub wall_weight: f32,
