@@ -229,6 +229,7 @@ fn toml_edit() -> impl Strategy<Value = TomlEdit> {
         Just("plan_points"),
         Just("thin_lines"),
         Just("hatching"),
+        Just("one_building"),
         Just("bbox"),
         Just("lines"),
         Just("[[facade]]"),

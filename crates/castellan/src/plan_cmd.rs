@@ -30,6 +30,7 @@ fn options(args: &PlanArgs) -> Result<plan::Options> {
         inner_ward_towers: !args.no_inner_towers,
         close_gates: !args.no_gates,
         trim_ink: args.trim_ink,
+        one_building: args.one_building,
         ink: args.ink,
         ..Default::default()
     })
@@ -211,6 +212,12 @@ pub struct PlanArgs {
     /// docs/plan.md, "Walls trimmed to the drawing").
     #[arg(long)]
     pub trim_ink: bool,
+    /// The drawing shows one building (a measured survey), not a book page with several
+    /// figures: keep every wall piece within six wall thicknesses of the castle, so that walls
+    /// cut by windows and doors stay (by default only pieces within 3 % of the sheet join; on
+    /// a book page this joins the next figure; see docs/plan.md, "One building").
+    #[arg(long)]
+    pub one_building: bool,
 }
 
 #[cfg(test)]
@@ -365,6 +372,22 @@ mod flag_tests {
         assert!(
             err.contains("--trim-ink") && err.contains("--ink rules"),
             "{err}"
+        );
+    }
+
+    #[test]
+    fn plan_one_building_only_when_asked() {
+        assert!(!plan_args(&[]).unwrap().one_building);
+        assert!(plan_args(&["--one-building"]).unwrap().one_building);
+        assert!(plan_args(&["--one-building", "yes"]).is_err());
+        for ink in ["learned", "network", "rules"] {
+            let a = plan_args(&["--one-building", "--ink", ink]).unwrap();
+            assert!(super::options(&a).unwrap().one_building, "{ink}");
+        }
+        assert!(
+            !super::options(&plan_args(&[]).unwrap())
+                .unwrap()
+                .one_building
         );
     }
 

@@ -30,6 +30,11 @@ pub struct Project {
     /// before parsing (`castellan plan --hatching`); off when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hatching: Option<bool>,
+    /// The plan shows one building (a measured survey), not a book page with several figures:
+    /// wall pieces within six wall thicknesses of the castle are kept (`castellan plan
+    /// --one-building`); off when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub one_building: Option<bool>,
     /// How the plan's walls are read: `learned` (the default when absent: the learned wall
     /// ink) or `rules` (§5.1.2's threshold and the clean-up rules; `castellan plan --ink`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -196,6 +201,7 @@ impl Project {
         plan::Options {
             thin_lines: self.thin_lines.unwrap_or(0.0),
             hatching: self.hatching.unwrap_or(false),
+            one_building: self.one_building.unwrap_or(false),
             ink: self.ink.unwrap_or_default(),
             ink_strokes: self.ink_strokes.clone(),
             seed: self.seed.unwrap_or(0),
@@ -471,6 +477,25 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("thin_lines = 2"), "{e}");
+    }
+
+    #[test]
+    fn one_building_reaches_the_plan_options_and_must_be_a_boolean() {
+        assert!(
+            !Project::from_toml(GOOD)
+                .unwrap()
+                .plan_options()
+                .one_building
+        );
+        let one = GOOD.replace("scale = 0.05", "scale = 0.05\none_building = true");
+        let p = Project::from_toml(&one).unwrap();
+        assert!(p.plan_options().one_building);
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
+        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\none_building = 1"))
+            .unwrap_err()
+            .to_string();
+        // Named by its line and column, as every bad value of PROJECT.toml is.
+        assert!(e.contains("4:16") && e.contains("boolean"), "{e}");
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Prints the development-set table (issue 11): labels at the annotated points and tower
 //! counts per plan, totals, frequent confusions and the time per drawing. Reads
 //! `../shared/data/castle_drawings_pd`. Run: `cargo run --release -p plan --example devset
-//! [-- --no-close-gaps] [--no-gates] [--trim-ink] [--no-inner-towers]
+//! [-- --no-close-gaps] [--no-gates] [--trim-ink] [--one-building] [--no-inner-towers]
 //! [--no-drop-marks] [--no-bulge-towers] [--no-thick-towers] [--no-ring-towers] [--ward-ratio R] [--thin-lines F] [--hatching] [--hachures] [--no-dashes] [--rules] [--more] [--ink-model FILE] [--net] [--ink-net FILE] [--overlays DIR] [--confusions] [--all] [--closed]`; `--confusions` lists each plan's wrong points (true → found); `--rules` parses with the issue-11 rule chain instead of the learned wall ink; `--more` reads `devset_more.json` (other hands); `--ink-model` reads a wall-ink model written by `train_ink --out FILE` instead of the shipped one; `--net` parses with the wall-ink network, `--ink-net` with a network written by `train_net --out FILE`; `--closed` lists each plan's closed outer wall and towers; `--overlays` writes each plan's label overlay; `--all` also parses all 236 plans of the manifest and prints
 //! how many parse (also apart for the 4-bit grey scans of 300–700 px), give a closed outer wall (a courtyard) and a tower, and the warnings by kind.
 
@@ -29,6 +29,7 @@ fn main() {
         close_gaps: !args.iter().any(|a| a == "--no-close-gaps"),
         close_gates: !args.iter().any(|a| a == "--no-gates"),
         trim_ink: args.iter().any(|a| a == "--trim-ink"),
+        one_building: args.iter().any(|a| a == "--one-building"),
         inner_ward_towers: !args.iter().any(|a| a == "--no-inner-towers"),
         drop_marks: !args.iter().any(|a| a == "--no-drop-marks"),
         ward_ratio: arg_value("--ward-ratio").map_or(0.3, |v| v.parse().unwrap()),

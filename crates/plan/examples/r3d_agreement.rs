@@ -3,7 +3,7 @@
 //! labelled as walls against `<id>_wall.png`, and whether a courtyard (closed outer wall) was
 //! found; and the IoU of the wall mask chapter 5 parsed (`ParsedPlan::walls`, the learned wall
 //! ink or the rules' threshold after §5.1.2) and of Otsu's bare threshold, against the same
-//! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps] [--no-gates] [--trim-ink]
+//! masks, and of the learned wall ink's own P(wall) > 0.5. Run: `cargo run --release -p plan --example r3d_agreement [LIMIT] [--no-close-gaps] [--no-gates] [--trim-ink] [--one-building]
 //! [--rules] [--ink-model FILE] [--net] [--ink-net FILE]`; `--ink-model` reads a wall-ink model written by `train_ink --out
 //! FILE` instead of the shipped one; `--net` parses with the wall-ink network (and its own
 //! mask is the network's), `--ink-net` reads a network written by `train_net --out FILE`.
@@ -36,6 +36,7 @@ fn main() {
         close_gaps: !std::env::args().any(|a| a == "--no-close-gaps"),
         close_gates: !std::env::args().any(|a| a == "--no-gates"),
         trim_ink: std::env::args().any(|a| a == "--trim-ink"),
+        one_building: std::env::args().any(|a| a == "--one-building"),
         ink: if std::env::args().any(|a| a == "--rules") {
             plan::ink::InkMethod::Rules
         } else if std::env::args().any(|a| a == "--net" || a == "--ink-net") {

@@ -117,16 +117,18 @@ pub fn preprocess_with(
         thin_lines: thin_line_fraction,
         ..Default::default()
     };
-    preprocess_clean(grey, min_region, &cleanup)
+    preprocess_clean(grey, min_region, &cleanup, false)
 }
 
 /// [`preprocess`] with the clean-up steps of `cleanup` run first. They come before step (2)
 /// because each works on what steps (2)–(5) destroy: hatch gaps too large to be filled as
 /// specks, hachures the opening keeps, dashes removed as specks, rib wedges filled as specks.
+/// `one_building`: the sheet shows one building ([`crate::Options::one_building`]).
 pub fn preprocess_clean(
     grey: &GrayImage,
     min_region: f64,
     cleanup: &Cleanup,
+    one_building: bool,
 ) -> (GrayImage, PreStats) {
     let level = threshold_level(grey);
     let mut img = binarize(grey, level);
@@ -171,30 +173,37 @@ pub fn preprocess_clean(
         stats.thin_line_pixels =
             drop_thin_lines(&mut img, radius, door, std::f64::consts::PI * t * t);
     }
-    let img = steps_two_to_five(img, min, false, &mut stats);
+    let img = steps_two_to_five(img, min, false, one_building, &mut stats);
     (img, stats)
 }
 
 /// The wall mask of the learned wall ink ([`crate::ink`], 255 = wall) through §5.1.2's steps
 /// (2)–(5) and the castle kept alone, as a thresholded drawing is. `level` is recorded as the
-/// threshold (P(wall) > 0.5 reads as 128).
-pub fn preprocess_learned(mask: GrayImage, min_region: f64) -> (GrayImage, PreStats) {
+/// threshold (P(wall) > 0.5 reads as 128). `one_building`: the sheet shows one building
+/// ([`crate::Options::one_building`]).
+pub fn preprocess_learned(
+    mask: GrayImage,
+    min_region: f64,
+    one_building: bool,
+) -> (GrayImage, PreStats) {
     let min = speck_pixels(&mask, min_region);
     let mut stats = PreStats {
         threshold: 128,
         ..Default::default()
     };
-    let img = steps_two_to_five(mask, min, true, &mut stats);
+    let img = steps_two_to_five(mask, min, true, one_building, &mut stats);
     (img, stats)
 }
 
 /// §5.1.2 (2)–(5) on a binary image: specks of paper filled, open/close 3 × 3, specks of ink
 /// removed; then the castle kept (regions outside its box dropped, or with `grow_castle` those
-/// its ink does not reach, [`castle_extent`]); counts in `stats`.
+/// its ink does not reach, [`castle_extent`]; with `one_building` also those within
+/// [`castle_extent::ONE_BUILDING_REACH`] wall thicknesses); counts in `stats`.
 fn steps_two_to_five(
     mut img: GrayImage,
     min: usize,
     grow_castle: bool,
+    one_building: bool,
     stats: &mut PreStats,
 ) -> GrayImage {
     // (2)-(3): white regions (4-connected: open space between 8-connected walls) under 0.05 %.
@@ -217,7 +226,8 @@ fn steps_two_to_five(
     // Addition to §5.1.2, which left this to the user's clean-up (§5.1.1, §5.2 item 2).
     let (w, h) = (img.width() as usize, img.height() as usize);
     let reach = grow_castle.then(|| castle_extent::reach(w, h));
-    let keep = castle_extent::castle_regions(&black, w, h, reach);
+    let building = one_building.then(|| castle_extent::building_reach(wall_thickness(&img)));
+    let keep = castle_extent::castle_regions(&black, w, h, reach, building);
     stats.dropped_outside = (1..keep.len())
         .filter(|&i| !keep[i] && black.sizes[i] > 0)
         .count();

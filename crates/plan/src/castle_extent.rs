@@ -13,6 +13,19 @@ pub(crate) fn reach(w: usize, h: usize) -> u8 {
     (CASTLE_REACH * w.max(h) as f64).round().min(254.0) as u8
 }
 
+/// With one building on the sheet ([`crate::Options::one_building`]), how near the castle's
+/// ink, in wall thicknesses, a region's ink must come to join it: far enough to cross a
+/// modern survey's windows and doors (3–4 thicknesses on R3D's flats). Measured with the
+/// network on R3D's walls (docs/plan.md, "One building"): 2 → 0.543, 3 → 0.663,
+/// 4 → 0.677, **6 → 0.703**, 8 → 0.706 (0.459 without).
+pub(crate) const ONE_BUILDING_REACH: f64 = 6.0;
+
+/// [`ONE_BUILDING_REACH`] in pixels for walls `thickness` pixels thick (1 to 254, the
+/// distances' range).
+pub(crate) fn building_reach(thickness: f64) -> u8 {
+    (ONE_BUILDING_REACH * thickness).round().clamp(1.0, 254.0) as u8
+}
+
 /// The share of the sheet's width or height beyond which a region is a frame or a sheet edge
 /// to [`castle_regions`].
 const SHEET_SPAN: f64 = 0.9;
@@ -22,7 +35,8 @@ const SHEET_SPAN: f64 = 0.9;
 /// lies within its box; and, with a `reach` in pixels, every region whose ink comes within
 /// `reach` of the ink kept so far (chessboard distance), a region that joins counting as kept
 /// ink at once ([`grow_by_ink`]). A region that spans [`SHEET_SPAN`] of the sheet's width or height (a frame, a sheet edge)
-/// joins only from within the box.
+/// joins only from within the box. With `building` (one building on the sheet), every region
+/// whose ink comes within `building` pixels of what is kept then joins too.
 ///
 /// Issue 26: with the learned ink the castle grows by reach ([`CASTLE_REACH`]). Keeping only
 /// what lay inside the largest region's box dropped every piece of a wall cut by windows and
@@ -37,6 +51,7 @@ pub(crate) fn castle_regions(
     w: usize,
     h: usize,
     reach: Option<u8>,
+    building: Option<u8>,
 ) -> Vec<bool> {
     let (sizes, bbox) = (&black.sizes, &black.bbox);
     let mut keep = vec![false; sizes.len()];
@@ -48,9 +63,9 @@ pub(crate) fn castle_regions(
         keep[i] = i == big
             || (sizes[i] > 0 && c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3]);
     }
-    let Some(reach) = reach else {
+    if reach.is_none() && building.is_none() {
         return keep;
-    };
+    }
     // A frame or a sheet edge spans the sheet; a piece of a tightly cropped castle only
     // touches its border.
     let may_join: Vec<bool> = (0..sizes.len())
@@ -62,7 +77,9 @@ pub(crate) fn castle_regions(
                 && f64::from(c[3] + 1 - c[1]) < SHEET_SPAN * h as f64
         })
         .collect();
-    grow_by_ink(black, w, h, reach, &may_join, &mut keep);
+    for r in [reach, building].into_iter().flatten() {
+        grow_by_ink(black, w, h, r, &may_join, &mut keep);
+    }
     keep
 }
 
@@ -161,14 +178,29 @@ mod tests {
             Luma([if l || f || b || c || d || e { 255 } else { 0 }])
         });
         let black = components(&sheet, 255, Connectivity::Eight);
-        let kept = |reach: Option<u8>| {
-            let keep = castle_regions(&black, 120, 80, reach);
+        let kept_with = |reach: Option<u8>, building: Option<u8>| {
+            let keep = castle_regions(&black, 120, 80, reach, building);
             // Which of L, F, B, C, D, E stay, by one pixel of each.
             [(20, 11), (31, 31), (60, 60), (70, 11), (90, 11), (104, 40)]
                 .map(|(x, y)| keep[black.labels[y * 120 + x] as usize])
         };
+        let kept = |reach: Option<u8>| kept_with(reach, None);
         assert_eq!(kept(None), [true, true, false, false, false, false]);
         assert_eq!(kept(Some(3)), [true, true, false, false, false, false]);
         assert_eq!(kept(Some(4)), [true, true, false, true, true, false]);
+        // One building: the box or the near reach first, then the building's reach (B's ink
+        // is 21 px from F's, chessboard); never the frame.
+        assert_eq!(
+            kept_with(None, Some(4)),
+            [true, true, false, true, true, false]
+        );
+        assert_eq!(
+            kept_with(Some(3), Some(20)),
+            [true, true, false, true, true, false]
+        );
+        assert_eq!(
+            kept_with(Some(3), Some(21)),
+            [true, true, true, true, true, false]
+        );
     }
 }

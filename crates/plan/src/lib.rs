@@ -113,6 +113,13 @@ pub struct Options {
     /// 0.456), but the model, built from the unchanged fits, then agrees with the plan less
     /// (median 0.807 → 0.788; docs/plan.md, "Walls trimmed to the drawing").
     pub trim_ink: bool,
+    /// The sheet shows one building, not a book page with several figures: every wall piece
+    /// within [`castle_extent::ONE_BUILDING_REACH`] wall thicknesses of the castle is kept,
+    /// where by default only those within 3 % of the sheet are. Off by default: on a book
+    /// page it joins the next figure (stacked storeys of a tower); on a modern survey, whose
+    /// walls windows and doors cut into pieces farther apart than that, it keeps the walls
+    /// (R3D's walls with the network 0.459 → 0.703; docs/plan.md, "One building").
+    pub one_building: bool,
     /// Drop ink regions without a room of their own that are not the castle (letters,
     /// numbers, north arrows; [`binarize::drop_marks`]), after the gaps are closed.
     pub drop_marks: bool,
@@ -173,6 +180,7 @@ impl Default for Options {
             close_gaps: true,
             close_gates: true,
             trim_ink: false,
+            one_building: false,
             inner_ward_towers: true,
             drop_marks: true,
             ward_ratio: 0.3,
@@ -376,8 +384,8 @@ fn parse_grey(
     };
     let is_learned = learned.is_some();
     let (mut bin, mut pre) = match learned {
-        Some(mask) => binarize::preprocess_learned(mask, opts.min_region),
-        None => binarize::preprocess_clean(grey, opts.min_region, &cleanup),
+        Some(mask) => binarize::preprocess_learned(mask, opts.min_region, opts.one_building),
+        None => binarize::preprocess_clean(grey, opts.min_region, &cleanup, opts.one_building),
     };
     laps.lap("preprocess");
     if pre.wall_pixels == 0 {

@@ -264,9 +264,12 @@ pub struct PlanSettings {
     /// The walls are drawn hatched (`hatching`).
     #[serde(default)]
     pub hatching: bool,
+    /// The plan shows one building (`one_building`).
+    #[serde(default)]
+    pub one_building: bool,
 }
 
-/// PUT /api/plan/settings: the scale, the scale bar, vault ribs and hatching, checked as
+/// PUT /api/plan/settings: the scale, the scale bar, vault ribs, hatching and one building, checked as
 /// PROJECT.toml is (a bad value is refused naming its key) and saved; the page parses again.
 pub async fn settings(
     State(app): State<Arc<App>>,
@@ -281,13 +284,15 @@ pub async fn settings(
         p.scale_bar_metres = body.scale_bar;
         p.thin_lines = body.thin_lines;
         p.hatching = body.hatching.then_some(true);
+        p.one_building = body.one_building.then_some(true);
         app.store
             .commit(Some(&p), vec![])
             .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
         versioned(
             &app.store,
             json!({ "scale": p.metres_per_pixel, "scale_bar": p.scale_bar_metres,
-                    "thin_lines": p.thin_lines, "hatching": body.hatching }),
+                    "thin_lines": p.thin_lines, "hatching": body.hatching,
+                    "one_building": body.one_building }),
         )
     })
     .await

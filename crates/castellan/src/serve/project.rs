@@ -139,6 +139,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     scale_bar_metres: None,
                     thin_lines: None,
                     hatching: None,
+                    one_building: None,
                     ink: None,
                     ink_strokes: vec![],
                     seed: None,
