@@ -15,9 +15,9 @@ pub(crate) fn reach(w: usize, h: usize) -> u8 {
 
 /// With one building on the sheet ([`crate::Options::one_building`]), how near the castle's
 /// ink, in wall thicknesses, a region's ink must come to join it: far enough to cross a
-/// modern survey's windows and doors (3–4 thicknesses on R3D's flats). Measured with the
+/// modern survey's windows and doors (3–4 thicknesses on R3D plan 9). Measured with the
 /// network on R3D's walls (docs/plan.md, "One building"): 2 → 0.543, 3 → 0.663,
-/// 4 → 0.677, **6 → 0.703**, 8 → 0.706 (0.459 without).
+/// 4 → 0.677, **6 → 0.703** (0.459 without).
 pub(crate) const ONE_BUILDING_REACH: f64 = 6.0;
 
 /// [`ONE_BUILDING_REACH`] in pixels for walls `thickness` pixels thick (1 to 254, the
