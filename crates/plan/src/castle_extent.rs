@@ -35,8 +35,8 @@ const SHEET_SPAN: f64 = 0.9;
 /// lies within its box; and, with a `reach` in pixels, every region whose ink comes within
 /// `reach` of the ink kept so far (chessboard distance), a region that joins counting as kept
 /// ink at once ([`grow_by_ink`]). A region that spans [`SHEET_SPAN`] of the sheet's width or height (a frame, a sheet edge)
-/// joins only from within the box. With `building` (one building on the sheet), every region
-/// whose ink comes within `building` pixels of what is kept then joins too.
+/// joins only from within the box. With `building` (one building on the sheet), the ink grows
+/// by `building` pixels where that is farther than `reach`.
 ///
 /// Issue 26: with the learned ink the castle grows by reach ([`CASTLE_REACH`]). Keeping only
 /// what lay inside the largest region's box dropped every piece of a wall cut by windows and
@@ -63,9 +63,12 @@ pub(crate) fn castle_regions(
         keep[i] = i == big
             || (sizes[i] > 0 && c[0] >= b[0] && c[1] >= b[1] && c[2] <= b[2] && c[3] <= b[3]);
     }
-    if reach.is_none() && building.is_none() {
+    // Growing by the nearer reach and then by the farther one keeps what growing by the
+    // farther one alone keeps (each joins every region within its reach, round after round),
+    // so one search by the larger serves (`None` orders below every reach).
+    let Some(reach) = reach.max(building) else {
         return keep;
-    }
+    };
     // A frame or a sheet edge spans the sheet; a piece of a tightly cropped castle only
     // touches its border.
     let may_join: Vec<bool> = (0..sizes.len())
@@ -77,9 +80,7 @@ pub(crate) fn castle_regions(
                 && f64::from(c[3] + 1 - c[1]) < SHEET_SPAN * h as f64
         })
         .collect();
-    for r in [reach, building].into_iter().flatten() {
-        grow_by_ink(black, w, h, r, &may_join, &mut keep);
-    }
+    grow_by_ink(black, w, h, reach, &may_join, &mut keep);
     keep
 }
 
