@@ -230,6 +230,7 @@ fn toml_edit() -> impl Strategy<Value = TomlEdit> {
         Just("thin_lines"),
         Just("hatching"),
         Just("one_building"),
+        Just("trim_ink"),
         Just("bbox"),
         Just("lines"),
         Just("[[facade]]"),

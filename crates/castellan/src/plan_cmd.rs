@@ -206,10 +206,10 @@ pub struct PlanArgs {
     /// room; see docs/plan.md, "Gates").
     #[arg(long)]
     pub no_gates: bool,
-    /// With the learned ink, give the walls' blur beyond the drawn ink back to the rooms,
-    /// courtyards and surroundings beside them after the parse, so that the labels and walls
-    /// follow the drawing (off by default: the model then agrees with the plan less; see
-    /// docs/plan.md, "Walls trimmed to the drawing").
+    /// With the learned ink, give the walls' blur beyond the drawn ink and below even odds on
+    /// the ink's map back to the rooms, courtyards and surroundings beside them after the
+    /// parse, so that the labels and walls follow the drawing (off by default: the model then
+    /// agrees with the plan less; see docs/plan.md, "Walls trimmed to the drawing").
     #[arg(long)]
     pub trim_ink: bool,
     /// The drawing shows one building (a measured survey), not a book page with several

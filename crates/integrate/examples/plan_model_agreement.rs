@@ -8,8 +8,9 @@
 //! and where the precision goes (the model's pixels on unbuilt plan, by structure kind). The
 //! drawings are read from `../shared/data/castle_drawings_pd`; without it only Coucy is
 //! measured. Run: `cargo run --release -p integrate --example
-//! plan_model_agreement [-- --limit N] [--absent]`; `--absent` lists the rooms and
-//! towers the model leaves uncovered.
+//! plan_model_agreement [-- --limit N] [--absent] [--trim-ink]`; `--absent` lists the rooms
+//! and towers the model leaves uncovered, `--trim-ink` trims every learned plan's walls to
+//! the drawing (PROJECT.toml `trim_ink`).
 
 use std::path::{Path, PathBuf};
 
@@ -185,7 +186,12 @@ fn main() {
 
 /// The agreement of a case's reconstruction and its structures' ids.
 fn measure(case: &Case) -> Result<(integrate::agreement::Agreement, Vec<String>), String> {
-    let project = Project::from_toml(&case.project).map_err(|e| e.to_string())?;
+    let mut project = Project::from_toml(&case.project).map_err(|e| e.to_string())?;
+    if std::env::args().any(|a| a == "--trim-ink")
+        && project.ink != Some(plan::ink::InkMethod::Rules)
+    {
+        project.trim_ink = Some(true);
+    }
     let r = pipeline::reconstruct(
         &project,
         &Folder(case.folder.clone()),

@@ -35,6 +35,11 @@ pub struct Project {
     /// --one-building`); off when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub one_building: Option<bool>,
+    /// After the parse, the learned walls are trimmed to the drawn ink and to even odds on the
+    /// ink's map, so they follow the drawing (`castellan plan --trim-ink`); off when absent.
+    /// Not with `ink = "rules"`, whose walls have no blur to trim.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trim_ink: Option<bool>,
     /// How the plan's walls are read: `learned` (the default when absent: the learned wall
     /// ink) or `rules` (§5.1.2's threshold and the clean-up rules; `castellan plan --ink`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -202,6 +207,7 @@ impl Project {
             thin_lines: self.thin_lines.unwrap_or(0.0),
             hatching: self.hatching.unwrap_or(false),
             one_building: self.one_building.unwrap_or(false),
+            trim_ink: self.trim_ink.unwrap_or(false),
             ink: self.ink.unwrap_or_default(),
             ink_strokes: self.ink_strokes.clone(),
             seed: self.seed.unwrap_or(0),
@@ -290,6 +296,9 @@ impl Project {
             return bad(format!(
                 "thin_lines = {t}: a fraction of the wall thickness, from 0 to 1"
             ));
+        }
+        if self.trim_ink == Some(true) && self.ink == Some(plan::ink::InkMethod::Rules) {
+            return bad("trim_ink = true trims the learned wall ink; it does nothing with ink = \"rules\", leave one of them out".into());
         }
         // The drawing's size is checked when it is parsed; here, everything else.
         if let Err(e) = plan::ink::refine::check(&self.ink_strokes, u32::MAX, u32::MAX) {
@@ -477,6 +486,30 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("thin_lines = 2"), "{e}");
+    }
+
+    #[test]
+    fn trim_ink_reaches_the_plan_options_and_not_with_the_rules() {
+        assert!(!Project::from_toml(GOOD).unwrap().plan_options().trim_ink);
+        let trim = GOOD.replace("scale = 0.05", "scale = 0.05\ntrim_ink = true");
+        let p = Project::from_toml(&trim).unwrap();
+        assert!(p.plan_options().trim_ink);
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
+        let network = trim.replace("trim_ink = true", "trim_ink = true\nink = \"network\"");
+        assert!(
+            Project::from_toml(&network)
+                .unwrap()
+                .plan_options()
+                .trim_ink
+        );
+        let rules = trim.replace("trim_ink = true", "trim_ink = true\nink = \"rules\"");
+        let e = Project::from_toml(&rules).unwrap_err().to_string();
+        assert!(e.contains("trim_ink") && e.contains("rules"), "{e}");
+        let e =
+            Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\ntrim_ink = \"yes\""))
+                .unwrap_err()
+                .to_string();
+        assert!(e.contains("4:12") && e.contains("boolean"), "{e}");
     }
 
     #[test]

@@ -110,8 +110,9 @@ pub struct Options {
     /// After the parse, give the learned walls' blur beyond the drawn ink back to the rooms,
     /// courtyards and surroundings beside them ([`ink::trim::walls_to_drawing`]; learned ink
     /// only). Off by default: the labels and walls follow the drawing (R3D walls IoU 0.353 →
-    /// 0.456), but the model, built from the unchanged fits, then agrees with the plan less
-    /// (median 0.807 → 0.788; docs/plan.md, "Walls trimmed to the drawing").
+    /// 0.572; with the network and `one_building` 0.703 → 0.804), but the model, built from
+    /// the unchanged fits, then agrees with the plan less (median 0.807 → 0.788;
+    /// docs/plan.md, "Walls trimmed to the drawing").
     pub trim_ink: bool,
     /// The sheet shows one building, not a book page with several figures: every wall piece
     /// within [`castle_extent::ONE_BUILDING_REACH`] wall thicknesses of the castle is kept,
@@ -242,7 +243,10 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     };
     let scale_bar = scalebar::find(&grey);
     // The learned ink reads the drawing at its own resolution; its map is enlarged with it.
-    let learned = learned_mask(&grey, k, opts)?;
+    let (learned, even_odds) = match learned_mask(&grey, k, opts)? {
+        Some(ink) => (Some(ink.mask), ink.even_odds),
+        None => (None, None),
+    };
     let parsed = if k == 1 {
         parse_grey(&grey, learned, opts, &mut Laps::default())?
     } else {
@@ -257,8 +261,12 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
     };
     let mut parsed = parsed;
     if opts.trim_ink && opts.ink != ink::InkMethod::Rules {
-        parsed.pre.trimmed_pixels =
-            ink::trim::walls_to_drawing(&grey, &mut parsed.labels, &mut parsed.walls);
+        parsed.pre.trimmed_pixels = ink::trim::walls_to_drawing(
+            &grey,
+            even_odds.as_ref(),
+            &mut parsed.labels,
+            &mut parsed.walls,
+        );
     }
     Ok(ParsedPlan {
         scale_bar,
@@ -294,13 +302,22 @@ pub(crate) fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
     roots.len()
 }
 
-/// The learned wall ink's mask (255 = wall) of `grey` at `k` times its size, refined by the
-/// user's strokes; `None` when the walls are read by the rules.
+/// The learned wall ink of a drawing, as chapter 5 and the trim take it.
+struct LearnedInk {
+    /// P(wall) > [`ink::WALL_THRESHOLD`] (255 = wall), at the parse's size.
+    mask: image::GrayImage,
+    /// P(wall) > [`ink::trim::EVEN_ODDS`] (255 = wall), at the drawing's size; only with
+    /// `trim_ink`, which alone reads it.
+    even_odds: Option<image::GrayImage>,
+}
+
+/// The learned wall ink of `grey` at `k` times its size, refined by the user's strokes;
+/// `None` when the walls are read by the rules.
 fn learned_mask(
     grey: &image::GrayImage,
     k: u32,
     opts: &Options,
-) -> Result<Option<image::GrayImage>, PlanError> {
+) -> Result<Option<LearnedInk>, PlanError> {
     if opts.ink == ink::InkMethod::Rules {
         return Ok(None);
     }
@@ -319,10 +336,18 @@ fn learned_mask(
         wk,
         hk,
     );
-    Ok(Some(image::GrayImage::from_fn(wk, hk, |x, y| {
-        let wall = p[(y * wk + x) as usize] > ink::WALL_THRESHOLD;
-        image::Luma([if wall { 255 } else { 0 }])
-    })))
+    let above =
+        |x: u32, y: u32, t: f32| image::Luma([if p[(y * wk + x) as usize] > t { 255 } else { 0 }]);
+    // The map is enlarged with the drawing; each of the drawing's pixels reads its centre.
+    let even_odds = opts.trim_ink.then(|| {
+        image::GrayImage::from_fn(w, h, |x, y| {
+            above(x * k + k / 2, y * k + k / 2, ink::trim::EVEN_ODDS)
+        })
+    });
+    Ok(Some(LearnedInk {
+        mask: image::GrayImage::from_fn(wk, hk, |x, y| above(x, y, ink::WALL_THRESHOLD)),
+        even_odds,
+    }))
 }
 
 /// The wall-clock time of each step of a parse, in order (`examples/stage_times.rs`).
@@ -350,7 +375,7 @@ pub fn learned_mask_of(
     grey: &image::GrayImage,
     opts: &Options,
 ) -> Result<Option<image::GrayImage>, PlanError> {
-    learned_mask(grey, 1, opts)
+    Ok(learned_mask(grey, 1, opts)?.map(|ink| ink.mask))
 }
 
 /// [`parse`]'s steps after the wall ink on `learned` ([`learned_mask_of`]; `None`: the rules'

@@ -205,8 +205,8 @@ pub(super) fn parsed_plan(app: &App, p: &Project) -> Result<(ParsedPlan, GrayIma
     let mut h = std::hash::DefaultHasher::new();
     bytes.hash(&mut h);
     format!(
-        "{:?} {:?} {:?} {:?} {:?} {:?}",
-        p.thin_lines, p.hatching, p.one_building, p.ink, p.ink_strokes, p.seed
+        "{:?} {:?} {:?} {:?} {:?} {:?} {:?}",
+        p.thin_lines, p.hatching, p.one_building, p.trim_ink, p.ink, p.ink_strokes, p.seed
     )
     .hash(&mut h);
     let key = h.finish();

@@ -267,10 +267,14 @@ pub struct PlanSettings {
     /// The plan shows one building (`one_building`).
     #[serde(default)]
     pub one_building: bool,
+    /// The learned walls are trimmed to the drawing after the parse (`trim_ink`).
+    #[serde(default)]
+    pub trim_ink: bool,
 }
 
-/// PUT /api/plan/settings: the scale, the scale bar, vault ribs, hatching and one building, checked as
-/// PROJECT.toml is (a bad value is refused naming its key) and saved; the page parses again.
+/// PUT /api/plan/settings: the scale, the scale bar, vault ribs, hatching, one building and
+/// the trim, checked as PROJECT.toml is (a bad value is refused naming its key) and saved;
+/// the page parses again.
 pub async fn settings(
     State(app): State<Arc<App>>,
     headers: HeaderMap,
@@ -285,6 +289,7 @@ pub async fn settings(
         p.thin_lines = body.thin_lines;
         p.hatching = body.hatching.then_some(true);
         p.one_building = body.one_building.then_some(true);
+        p.trim_ink = body.trim_ink.then_some(true);
         app.store
             .commit(Some(&p), vec![])
             .map_err(err(StatusCode::UNPROCESSABLE_ENTITY))?;
@@ -292,7 +297,7 @@ pub async fn settings(
             &app.store,
             json!({ "scale": p.metres_per_pixel, "scale_bar": p.scale_bar_metres,
                     "thin_lines": p.thin_lines, "hatching": body.hatching,
-                    "one_building": body.one_building }),
+                    "one_building": body.one_building, "trim_ink": body.trim_ink }),
         )
     })
     .await

@@ -133,15 +133,21 @@ async fn towers_removed_and_undone_and_the_keep_honoured_by_the_reconstruction()
 async fn plan_settings_are_checked_as_project_toml_is() {
     let dir = demo_project();
     let app = app(dir.path(), 1 << 20);
-    let ok = json_value!({"scale": 0.2, "thin_lines": 0.5, "hatching": true, "one_building": true});
+    let ok = json_value!({"scale": 0.2, "thin_lines": 0.5, "hatching": true, "one_building": true, "trim_ink": true});
     let (s, v) = json(&app, "PUT", "/api/plan/settings", &ok.to_string()).await;
     assert_eq!(s, StatusCode::OK, "{v}");
     let p = saved_project(dir.path());
     assert_eq!(
-        (p.metres_per_pixel, p.thin_lines, p.hatching, p.one_building),
-        (Some(0.2), Some(0.5), Some(true), Some(true))
+        (
+            p.metres_per_pixel,
+            p.thin_lines,
+            p.hatching,
+            p.one_building,
+            p.trim_ink
+        ),
+        (Some(0.2), Some(0.5), Some(true), Some(true), Some(true))
     );
-    assert!(p.plan_options().one_building);
+    assert!(p.plan_options().one_building && p.plan_options().trim_ink);
     let both = json_value!({"scale": 0.2, "scale_bar": 30.0});
     let (s, v) = json(&app, "PUT", "/api/plan/settings", &both.to_string()).await;
     assert_eq!(s, StatusCode::UNPROCESSABLE_ENTITY, "{v}");

@@ -140,6 +140,7 @@ pub async fn upload(State(app): State<Arc<App>>, headers: HeaderMap, mut form: M
                     thin_lines: None,
                     hatching: None,
                     one_building: None,
+                    trim_ink: None,
                     ink: None,
                     ink_strokes: vec![],
                     seed: None,

@@ -215,7 +215,7 @@ export function initPlanFixes(ui) {
 
   $('settings-save').addEventListener('click', async () => {
     const num = (id) => ($(id).value === '' ? null : Number($(id).value));
-    const body = { scale: num('set-scale'), scale_bar: num('set-scale-bar'), thin_lines: num('set-thin-lines'), hatching: $('set-hatching').checked, one_building: $('set-one-building').checked };
+    const body = { scale: num('set-scale'), scale_bar: num('set-scale-bar'), thin_lines: num('set-thin-lines'), hatching: $('set-hatching').checked, one_building: $('set-one-building').checked, trim_ink: $('set-trim-ink').checked };
     const r = await step('Saving the plan settings', () => api('PUT', '/api/plan/settings', body));
     if (r) await ui.parsePlan();
   });
@@ -247,6 +247,7 @@ export function initPlanFixes(ui) {
       $('set-thin-lines').value = project.thin_lines ?? '';
       $('set-hatching').checked = !!project.hatching;
       $('set-one-building').checked = !!project.one_building;
+      $('set-trim-ink').checked = !!project.trim_ink;
       showList();
     },
     // After every parse: the new overlay under the marks.
