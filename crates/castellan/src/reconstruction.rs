@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow};
 use integrate::pipeline::{self, Files, Progress, Stage};
-use integrate::project::Project;
+use integrate::project::{Project, ProjectError};
 use plan::scale::ScaleNote;
 
 use crate::images::read_image;
@@ -76,7 +76,11 @@ pub fn reconstruct(
 ) -> Result<Summary> {
     let name = project_path.display().to_string();
     let text = crate::text::read_text(project_path)?;
-    let project = Project::from_toml(&text).map_err(|e| anyhow!("{name}:{e}"))?;
+    // A syntax error names its line:column, which joins the file's name as `file:line:column`.
+    let project = Project::from_toml(&text).map_err(|e| match e {
+        ProjectError::Syntax { .. } => anyhow!("{name}:{e}"),
+        ProjectError::Invalid(_) => anyhow!("{name}: {e}"),
+    })?;
     let files = FolderFiles {
         dir: project_path.parent().unwrap_or(Path::new("")).to_path_buf(),
     };

@@ -277,6 +277,15 @@ fn a_syntax_error_has_line_and_column() {
     fails_naming(|t| t.replacen("seed = 7", "seed = ", 1), "PROJECT.toml:6:");
 }
 
+#[test]
+fn a_bad_value_follows_the_file_name_after_a_space() {
+    // A checked value has no line:column of its own; its key leads the message.
+    fails_naming(
+        |t| t.replacen("seed = 7", "seed = 7\ntrim_ink = true\nink = \"rules\"", 1),
+        "PROJECT.toml: trim_ink = true trims the learned wall ink",
+    );
+}
+
 /// Issue 11: `scale_bar` in PROJECT.toml — the bar drawn on the plan gives the scale. A
 /// 150-px bar (ticks every 30 px) under the demo castle said to be 15 m long gives its 0.1 m
 /// per pixel.
