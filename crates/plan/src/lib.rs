@@ -111,7 +111,7 @@ pub struct Options {
     /// courtyards and surroundings beside them ([`ink::trim::walls_to_drawing`]; learned ink
     /// only). Off by default: the labels and walls follow the drawing (R3D walls IoU 0.353 →
     /// 0.572; with the network and `one_building` 0.703 → 0.804), but the model, built from
-    /// the unchanged fits, then agrees with the plan less (median 0.807 → 0.788;
+    /// the unchanged fits, then agrees with the plan less (median 0.849 → 0.748;
     /// docs/plan.md, "Walls trimmed to the drawing").
     pub trim_ink: bool,
     /// The sheet shows one building, not a book page with several figures: every wall piece
