@@ -43,6 +43,7 @@ struct Case {
 fn main() {
     let repo = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     let detail = std::env::args().any(|a| a == "--absent");
+    let trim_ink = std::env::args().any(|a| a == "--trim-ink");
     let limit = arg_value("--limit").map_or(usize::MAX, |v| v.parse().expect("--limit N"));
     let coucy = repo.join("examples/coucy");
     let mut cases = vec![Case {
@@ -69,7 +70,7 @@ fn main() {
     // without its number), over every plan but the demo.
     let mut spilled: std::collections::BTreeMap<String, usize> = Default::default();
     for case in &cases {
-        match measure(case) {
+        match measure(case, trim_ink) {
             Ok((a, ids)) => {
                 let structures = ids.len();
                 println!(
@@ -184,12 +185,14 @@ fn main() {
     );
 }
 
-/// The agreement of a case's reconstruction and its structures' ids.
-fn measure(case: &Case) -> Result<(integrate::agreement::Agreement, Vec<String>), String> {
+/// The agreement of a case's reconstruction and its structures' ids; with `trim_ink`, a
+/// learned plan's walls trimmed to the drawing.
+fn measure(
+    case: &Case,
+    trim_ink: bool,
+) -> Result<(integrate::agreement::Agreement, Vec<String>), String> {
     let mut project = Project::from_toml(&case.project).map_err(|e| e.to_string())?;
-    if std::env::args().any(|a| a == "--trim-ink")
-        && project.ink != Some(plan::ink::InkMethod::Rules)
-    {
+    if trim_ink && project.ink != Some(plan::ink::InkMethod::Rules) {
         project.trim_ink = Some(true);
     }
     let r = pipeline::reconstruct(

@@ -189,8 +189,8 @@ mod tests {
         assert_eq!(kept(None), [true, true, false, false, false, false]);
         assert_eq!(kept(Some(3)), [true, true, false, false, false, false]);
         assert_eq!(kept(Some(4)), [true, true, false, true, true, false]);
-        // One building: the box or the near reach first, then the building's reach (B's ink
-        // is 21 px from F's, chessboard); never the frame.
+        // One building: the box, then the larger of the two reaches (B's ink is 21 px from
+        // F's, chessboard); never the frame.
         assert_eq!(
             kept_with(None, Some(4)),
             [true, true, false, true, true, false]

@@ -260,13 +260,10 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
         )
     };
     let mut parsed = parsed;
-    if opts.trim_ink && opts.ink != ink::InkMethod::Rules {
-        parsed.pre.trimmed_pixels = ink::trim::walls_to_drawing(
-            &grey,
-            even_odds.as_ref(),
-            &mut parsed.labels,
-            &mut parsed.walls,
-        );
+    // The map at even odds is made only for the trim, and only by a learned ink.
+    if let Some(even_odds) = &even_odds {
+        parsed.pre.trimmed_pixels =
+            ink::trim::walls_to_drawing(&grey, even_odds, &mut parsed.labels, &mut parsed.walls);
     }
     Ok(ParsedPlan {
         scale_bar,

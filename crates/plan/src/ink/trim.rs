@@ -42,7 +42,7 @@ pub const EVEN_ODDS: f32 = 0.5;
 /// back.
 pub fn walls_to_drawing(
     grey: &GrayImage,
-    even_odds: Option<&GrayImage>,
+    even_odds: &GrayImage,
     labels: &mut [u8],
     walls: &mut Mask,
 ) -> usize {
@@ -60,7 +60,7 @@ pub fn walls_to_drawing(
     let is_wall = |l: u8| Label::ALL.get(l as usize).is_some_and(|l| l.is_wall());
     let mut trimmed: Vec<bool> = (0..w * h)
         .map(|i| {
-            let blur = near.as_raw()[i] == 0 || even_odds.is_some_and(|m| m.as_raw()[i] == 0);
+            let blur = near.as_raw()[i] == 0 || even_odds.as_raw()[i] == 0;
             walls.data[i] == 1 && blur && is_wall(labels[i])
         })
         .collect();
@@ -127,11 +127,19 @@ mod tests {
         (grey, labels, walls)
     }
 
+    /// A map above even odds everywhere: only the paper test trims.
+    fn all_above_even_odds() -> GrayImage {
+        GrayImage::from_pixel(20, 9, Luma([255]))
+    }
+
     #[test]
     fn the_blur_goes_to_the_paper_beside_it_and_the_drawn_wall_stays() {
         let (grey, mut labels, mut walls) = blurred_line();
         // Rows 1 and 7 are more than a pixel from the ink: 2 rows of 20 are given back.
-        assert_eq!(walls_to_drawing(&grey, None, &mut labels, &mut walls), 40);
+        assert_eq!(
+            walls_to_drawing(&grey, &all_above_even_odds(), &mut labels, &mut walls),
+            40
+        );
         for x in 0..20 {
             assert_eq!(
                 labels[20 + x],
@@ -164,7 +172,7 @@ mod tests {
             Luma([if (3..5).contains(&y) { 255 } else { 0 }])
         });
         assert_eq!(
-            walls_to_drawing(&grey, Some(&even_odds), &mut labels, &mut walls),
+            walls_to_drawing(&grey, &even_odds, &mut labels, &mut walls),
             5 * 20,
             "rows 1, 2, 5, 6 and 7"
         );
@@ -188,7 +196,10 @@ mod tests {
         let (grey, mut labels, mut walls) = blurred_line();
         labels.fill(Label::CastleOuterWall as u8);
         walls.data.fill(1);
-        assert_eq!(walls_to_drawing(&grey, None, &mut labels, &mut walls), 0);
+        assert_eq!(
+            walls_to_drawing(&grey, &all_above_even_odds(), &mut labels, &mut walls),
+            0
+        );
         assert!(walls.data.iter().all(|&v| v == 1));
     }
 }
