@@ -456,7 +456,7 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("scale"), "{e}");
-        let both = GOOD.replace("scale = 0.05", "scale = 0.05\nscale_bar = 50");
+        let both = with_line("scale_bar = 50");
         let e = Project::from_toml(&both).unwrap_err().to_string();
         assert!(e.contains("not both"), "{e}");
         let bar = GOOD.replace("scale = 0.05", "scale_bar = 50");
@@ -468,67 +468,71 @@ plan_points = [[10, 10], [20, 20]]
             .unwrap_err()
             .to_string();
         assert!(e.contains("scale_bar"), "{e}");
-        let ribs = GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 0.3");
+        let ribs = with_line("thin_lines = 0.3");
         let ribbed = Project::from_toml(&ribs).unwrap();
         assert_eq!(ribbed.thin_lines, Some(0.3));
         assert_eq!(ribbed.plan_options().thin_lines, 0.3);
         let plain = Project::from_toml(GOOD).unwrap().plan_options();
         assert_eq!(plain.thin_lines, plan::Options::default().thin_lines);
         assert!(!plain.hatching);
-        let hatched = GOOD.replace("scale = 0.05", "scale = 0.05\nhatching = true");
+        let hatched = with_line("hatching = true");
         assert!(
             Project::from_toml(&hatched)
                 .unwrap()
                 .plan_options()
                 .hatching
         );
-        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nthin_lines = 2"))
+        let e = Project::from_toml(&with_line("thin_lines = 2"))
             .unwrap_err()
             .to_string();
         assert!(e.contains("thin_lines = 2"), "{e}");
     }
 
+    /// [`GOOD`] with `line` after its scale, so on line 4.
+    fn with_line(line: &str) -> String {
+        GOOD.replace("scale = 0.05", &format!("scale = 0.05\n{line}"))
+    }
+
+    /// A boolean plan key: off when absent, `key = true` reaches the plan options (`get`) and
+    /// survives a save, and `key = bad` is refused at `position` as not a boolean.
+    fn boolean_plan_key(
+        key: &str,
+        get: impl Fn(&plan::Options) -> bool,
+        bad: &str,
+        position: &str,
+    ) {
+        assert!(
+            !get(&Project::from_toml(GOOD).unwrap().plan_options()),
+            "{key}"
+        );
+        let p = Project::from_toml(&with_line(&format!("{key} = true"))).unwrap();
+        assert!(get(&p.plan_options()), "{key}");
+        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
+        let e = Project::from_toml(&with_line(&format!("{key} = {bad}")))
+            .unwrap_err()
+            .to_string();
+        // Named by its line and column, as every bad value of PROJECT.toml is.
+        assert!(e.contains(position) && e.contains("boolean"), "{e}");
+    }
+
     #[test]
     fn trim_ink_reaches_the_plan_options_and_not_with_the_rules() {
-        assert!(!Project::from_toml(GOOD).unwrap().plan_options().trim_ink);
-        let trim = GOOD.replace("scale = 0.05", "scale = 0.05\ntrim_ink = true");
-        let p = Project::from_toml(&trim).unwrap();
-        assert!(p.plan_options().trim_ink);
-        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
-        let network = trim.replace("trim_ink = true", "trim_ink = true\nink = \"network\"");
+        boolean_plan_key("trim_ink", |o| o.trim_ink, "\"yes\"", "4:12");
+        let network = with_line("trim_ink = true\nink = \"network\"");
         assert!(
             Project::from_toml(&network)
                 .unwrap()
                 .plan_options()
                 .trim_ink
         );
-        let rules = trim.replace("trim_ink = true", "trim_ink = true\nink = \"rules\"");
+        let rules = with_line("trim_ink = true\nink = \"rules\"");
         let e = Project::from_toml(&rules).unwrap_err().to_string();
         assert!(e.contains("trim_ink") && e.contains("rules"), "{e}");
-        let e =
-            Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\ntrim_ink = \"yes\""))
-                .unwrap_err()
-                .to_string();
-        assert!(e.contains("4:12") && e.contains("boolean"), "{e}");
     }
 
     #[test]
     fn one_building_reaches_the_plan_options_and_must_be_a_boolean() {
-        assert!(
-            !Project::from_toml(GOOD)
-                .unwrap()
-                .plan_options()
-                .one_building
-        );
-        let one = GOOD.replace("scale = 0.05", "scale = 0.05\none_building = true");
-        let p = Project::from_toml(&one).unwrap();
-        assert!(p.plan_options().one_building);
-        assert_eq!(Project::from_toml(&p.to_toml()).unwrap(), p);
-        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\none_building = 1"))
-            .unwrap_err()
-            .to_string();
-        // Named by its line and column, as every bad value of PROJECT.toml is.
-        assert!(e.contains("4:16") && e.contains("boolean"), "{e}");
+        boolean_plan_key("one_building", |o| o.one_building, "1", "4:16");
     }
 
     #[test]
@@ -538,17 +542,17 @@ plan_points = [[10, 10], [20, 20]]
             Project::from_toml(GOOD).unwrap().plan_options().ink,
             InkMethod::Learned
         );
-        let rules = GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"rules\"");
+        let rules = with_line("ink = \"rules\"");
         assert_eq!(
             Project::from_toml(&rules).unwrap().plan_options().ink,
             InkMethod::Rules
         );
-        let network = GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"network\"");
+        let network = with_line("ink = \"network\"");
         assert_eq!(
             Project::from_toml(&network).unwrap().plan_options().ink,
             InkMethod::Network
         );
-        let e = Project::from_toml(&GOOD.replace("scale = 0.05", "scale = 0.05\nink = \"otsu\""))
+        let e = Project::from_toml(&with_line("ink = \"otsu\""))
             .unwrap_err()
             .to_string();
         assert!(e.contains("otsu"), "{e}");
