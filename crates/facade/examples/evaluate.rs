@@ -16,8 +16,8 @@
 //!   the ground truth (log-ratio ±FACADE_ORACLE_GAP, default 2, plus smooth Gaussian noise of
 //!   standard deviation FACADE_ORACLE_NOISE, default 2, and FACADE_ORACLE_FLIPS blobs of a
 //!   wrong class per image, default 20) to measure the search alone.
-//! - FACADE_GRAMMAR=text|columns: the search's grammar (`facade::search::Grammar`; default
-//!   columns); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
+//! - FACADE_GRAMMAR=text|columns|rows|columns-or-rows: the search's grammar
+//!   (`facade::search::Grammar`; default columns-or-rows); FACADE_CLIP, FACADE_PENALTY, FACADE_MIN_WINDOW,
 //!   FACADE_COLUMN_COST, FACADE_WINDOW_BIAS, FACADE_ROUNDS, FACADE_MIN_FACADE, FACADE_MERGE: `SearchParams`.
 //! - FACADE_REPEAT=0|1: the repeat step of `facade::parse_photo` (proposals from whole-window
 //!   boxes added to the window evidence, weight FACADE_REPEAT_WEIGHT, acceptance
@@ -185,9 +185,21 @@ fn classify_params() -> ClassifyParams {
 }
 
 fn search_params() -> SearchParams {
-    let mut p = match env_str("FACADE_GRAMMAR", "columns").as_str() {
+    use facade::search::Grammar;
+    let mut p = match env_str("FACADE_GRAMMAR", "columns-or-rows").as_str() {
         "text" => SearchParams::text(),
-        _ => SearchParams::default(),
+        name => {
+            let grammar = match name {
+                "columns" => Grammar::Columns,
+                "rows" => Grammar::Rows,
+                "columns-or-rows" => Grammar::ColumnsOrRows,
+                other => panic!("FACADE_GRAMMAR={other}: text, columns, rows or columns-or-rows"),
+            };
+            SearchParams {
+                grammar,
+                ..SearchParams::default()
+            }
+        }
     };
     p.clip = env_f64("FACADE_CLIP", p.clip);
     p.facade_penalty = env_f64("FACADE_PENALTY", p.facade_penalty);

@@ -30,6 +30,17 @@ pub fn best_intervals(
     min_gap: usize,
     cost: f64,
 ) -> Vec<(usize, usize)> {
+    best_intervals_at_most(prof, min_w, min_gap, cost, MAX_COLUMNS as usize)
+}
+
+/// [`best_intervals`], at most `max` of them (the strongest by their sum of `prof`).
+pub fn best_intervals_at_most(
+    prof: &[f64],
+    min_w: usize,
+    min_gap: usize,
+    cost: f64,
+    max: usize,
+) -> Vec<(usize, usize)> {
     let n = prof.len();
     let min_w = min_w.max(1);
     let mut pre = vec![0f64; n + 1];
@@ -66,10 +77,10 @@ pub fn best_intervals(
         }
     }
     out.reverse();
-    if out.len() > MAX_COLUMNS as usize {
+    if out.len() > max {
         let mut by_sum: Vec<(usize, usize)> = out.clone();
         by_sum.sort_by(|x, y| (pre[y.1] - pre[y.0]).total_cmp(&(pre[x.1] - pre[x.0])));
-        by_sum.truncate(MAX_COLUMNS as usize);
+        by_sum.truncate(max);
         by_sum.sort_unstable();
         out = by_sum;
     }
@@ -95,9 +106,118 @@ fn kind(i: usize, n: usize) -> usize {
 /// A vertical layout relative to the façade top: each floor bottom-up as (top, bottom, window
 /// height, window-to-floor-bottom), and the vertical half of the 18 parameters that sums it up.
 #[derive(Debug, Clone, PartialEq)]
-struct Layout {
+pub(super) struct Layout {
     bands: Vec<(f64, f64, f64, f64)>,
     stub: FacadeParams,
+}
+
+impl Layout {
+    /// The layout of floors given bottom-up as (top, bottom, window height,
+    /// window-to-floor-bottom), with the 18 parameters' vertical half summing them up: the
+    /// middle floors' mean height and window band stand for one middle floor.
+    fn of_bands(bands: Vec<(f64, f64, f64, f64)>, fh: usize) -> Layout {
+        let n = bands.len();
+        let middle: &[(f64, f64, f64, f64)] = if n > 2 { &bands[1..n - 1] } else { &[] };
+        let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| {
+            if middle.is_empty() {
+                0.0
+            } else {
+                middle.iter().map(f).sum::<f64>() / middle.len() as f64
+            }
+        };
+        let (ground, top) = (bands[0], bands[n - 1]);
+        let stub = FacadeParams {
+            x_fl: 0.0,
+            y_ft: 0.0,
+            x_fr: 0.0,
+            y_fb: fh as f64,
+            h_1: ground.1 - ground.0,
+            h: mean(|b| b.1 - b.0),
+            h_nl: if n > 1 { top.1 - top.0 } else { 0.0 },
+            n_l: n as u32,
+            w_off: 0.0,
+            w_w: 0.0,
+            w_gap: 0.0,
+            w_h: mean(|b| b.2),
+            w_grd: mean(|b| b.3),
+            w_h_ground: ground.2,
+            w_grd_ground: ground.3,
+            w_h_top: if n > 1 { top.2 } else { 0.0 },
+            w_grd_top: if n > 1 { top.3 } else { 0.0 },
+            n_w: 0,
+        };
+        Layout { bands, stub }
+    }
+
+    /// One floor per window row (`rows`: relative, top to bottom), the floor lines halfway
+    /// between rows; one windowless floor when there is no row.
+    pub(super) fn of_rows(rows: &[(usize, usize)], fh: usize) -> Layout {
+        if rows.is_empty() {
+            return Layout::of_bands(vec![(0.0, fh as f64, 0.0, 0.0)], fh);
+        }
+        let n = rows.len();
+        let line = |k: usize| -> f64 {
+            if k + 1 == n {
+                fh as f64
+            } else {
+                (rows[k].1 + rows[k + 1].0) as f64 / 2.0
+            }
+        };
+        let bands = (0..n)
+            .rev()
+            .map(|k| {
+                let top = if k == 0 { 0.0 } else { line(k - 1) };
+                let bottom = line(k);
+                let (a, b) = (rows[k].0 as f64, rows[k].1 as f64);
+                (top, bottom, b - a, bottom - b)
+            })
+            .collect();
+        Layout::of_bands(bands, fh)
+    }
+}
+
+/// The sum of `d` down each column of the façade `r` over the rows `rows` (relative to the
+/// façade's top), left to right.
+pub(super) fn column_profile(d: &Integral, r: [usize; 4], rows: &[(usize, usize)]) -> Vec<f64> {
+    let [x0, y0, x1, _] = r;
+    (x0..x1)
+        .map(|x| {
+            rows.iter()
+                .map(|&(a, b)| d.sum(x, y0 + a, x + 1, y0 + b))
+                .sum()
+        })
+        .collect()
+}
+
+/// The sum of `d` along each row of the façade `r` over the columns `cols` (relative to the
+/// façade's left edge), top to bottom.
+pub(super) fn row_profile(d: &Integral, r: [usize; 4], cols: &[(usize, usize)]) -> Vec<f64> {
+    let [x0, y0, _, y1] = r;
+    (y0..y1)
+        .map(|y| {
+            cols.iter()
+                .map(|&(a, b)| d.sum(x0 + a, y, x0 + b, y + 1))
+                .sum()
+        })
+        .collect()
+}
+
+/// The rows a search starts from: those whose sum `all` over the whole width is above the
+/// mean row's (at the mean too when that leaves none).
+pub(super) fn start_rows(all: &[f64]) -> Vec<(usize, usize)> {
+    let fh = all.len();
+    let mean = all.iter().sum::<f64>() / fh.max(1) as f64;
+    let mut start: Vec<(usize, usize)> = (0..fh)
+        .filter(|&y| all[y] > mean)
+        .map(|y| (y, y + 1))
+        .collect();
+    if start.is_empty() {
+        start = (0..fh)
+            .filter(|&y| all[y] >= mean)
+            .map(|y| (y, y + 1))
+            .collect();
+    }
+    start
 }
 
 /// The layout of a searched [`Vertical`], the user's blind floors (from the ground, 1 = the
@@ -135,37 +255,7 @@ fn fixed_layout(profiles: [&[f64]; 3], lines: &[usize], fh: usize, blind: &[usiz
             (t as f64, b as f64, wh as f64, wg as f64)
         })
         .collect();
-    // The 18 parameters hold one middle floor: the middle floors' mean height and window band.
-    let middle: &[(f64, f64, f64, f64)] = if n > 2 { &bands[1..n - 1] } else { &[] };
-    let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| {
-        if middle.is_empty() {
-            0.0
-        } else {
-            middle.iter().map(f).sum::<f64>() / middle.len() as f64
-        }
-    };
-    let (ground, top) = (bands[0], bands[n - 1]);
-    let stub = FacadeParams {
-        x_fl: 0.0,
-        y_ft: 0.0,
-        x_fr: 0.0,
-        y_fb: fh as f64,
-        h_1: ground.1 - ground.0,
-        h: mean(|b| b.1 - b.0),
-        h_nl: if n > 1 { top.1 - top.0 } else { 0.0 },
-        n_l: n as u32,
-        w_off: 0.0,
-        w_w: 0.0,
-        w_gap: 0.0,
-        w_h: mean(|b| b.2),
-        w_grd: mean(|b| b.3),
-        w_h_ground: ground.2,
-        w_grd_ground: ground.3,
-        w_h_top: if n > 1 { top.2 } else { 0.0 },
-        w_grd_top: if n > 1 { top.3 } else { 0.0 },
-        n_w: 0,
-    };
-    Layout { bands, stub }
+    Layout::of_bands(bands, fh)
 }
 
 /// Window rows per floor kind (relative to the façade top), from a vertical layout.
@@ -199,24 +289,8 @@ pub(crate) fn fit_columns_with(
     let [x0, y0, x1, y1] = r;
     let (fw, fh) = (x1 - x0, y1 - y0);
     let y_cands: Vec<usize> = grads.y_peaks(r, p).into_iter().map(|y| y - y0).collect();
-    let col_profile = |rows: &[(usize, usize)]| -> Vec<f64> {
-        (0..fw)
-            .map(|x| {
-                rows.iter()
-                    .map(|&(a, b)| d.sum(x0 + x, y0 + a, x0 + x + 1, y0 + b))
-                    .sum()
-            })
-            .collect()
-    };
-    let row_profile = |cols: &[(usize, usize)]| -> Vec<f64> {
-        (0..fh)
-            .map(|y| {
-                cols.iter()
-                    .map(|&(a, b)| d.sum(x0 + a, y0 + y, x0 + b, y0 + y + 1))
-                    .sum()
-            })
-            .collect()
-    };
+    let col_profile = |rows: &[(usize, usize)]| column_profile(d, r, rows);
+    let row_profile = |cols: &[(usize, usize)]| row_profile(d, r, cols);
     let blind = &fixed.blind;
     let layout_for = |profiles: [&[f64]; 3]| -> Layout {
         match &fixed.lines {
@@ -230,18 +304,7 @@ pub(crate) fn fit_columns_with(
     // rows (Σ ≈ 0 where windows fill half the width) sit at the median, and one row of sky at
     // the façade's top edge was the whole start — the search then found no window at all.
     // The mean lies between the two kinds of row.
-    let all = row_profile(&[(0, fw)]);
-    let mean = all.iter().sum::<f64>() / fh.max(1) as f64;
-    let mut start: Vec<(usize, usize)> = (0..fh)
-        .filter(|&y| all[y] > mean)
-        .map(|y| (y, y + 1))
-        .collect();
-    if start.is_empty() {
-        start = (0..fh)
-            .filter(|&y| all[y] >= mean)
-            .map(|y| (y, y + 1))
-            .collect();
-    }
+    let start = start_rows(&row_profile(&[(0, fw)]));
     // Departure 1's regularisers: windows and gaps at least `min_window_frac` of the façade's
     // width, and each column costs `column_cost` pixels of evidence per window row (without
     // them a noisy map gives a barcode of one-pixel columns).
@@ -306,7 +369,7 @@ pub(crate) fn fit_columns_with(
 }
 
 /// The façade tree of a vertical layout and per-kind columns (relative), in image pixels.
-fn facade_of(
+pub(super) fn facade_of(
     r: [usize; 4],
     layout: &Layout,
     cols: &[Vec<(usize, usize)>; 3],
@@ -409,22 +472,8 @@ mod tests {
                 || ((11..31).contains(&y) || (46..66).contains(&y))
                     && (0..3).any(|k| (12 + 38 * k..32 + 38 * k).contains(&x))
         };
-        let map: Vec<f64> = (0..w * h)
-            .map(|i| if win(i % w, i / w) { 1.0 } else { -1.0 })
-            .collect();
-        let img = image::RgbImage::from_fn(w as u32, h as u32, |x, y| {
-            if win(x as usize, y as usize) {
-                image::Rgb([35, 45, 65])
-            } else {
-                image::Rgb([185, 135, 95])
-            }
-        });
-        let f = fit_columns(
-            [0, 0, w, h],
-            &Integral::new(&map, w, h),
-            &Gradients::new(&img),
-            &SearchParams::default(),
-        );
+        let (d, g) = crate::search::crisp_map(w, h, win);
+        let f = fit_columns([0, 0, w, h], &d, &g, &SearchParams::default());
         let mut windows: Vec<[f64; 4]> = f
             .floors
             .iter()

@@ -9,6 +9,7 @@ pub mod floors;
 mod gradients;
 pub mod joint;
 mod params;
+pub mod rows;
 
 use image::RgbImage;
 
@@ -76,6 +77,8 @@ pub fn parse_with(
                 }
                 Grammar::Text => joint::fit_floors(*r, &di, &grads, p).to_facade(),
                 Grammar::Columns => columns::fit_columns(*r, &di, &grads, p),
+                Grammar::Rows => rows::fit_rows(*r, &di, p),
+                Grammar::ColumnsOrRows => rows::fit_columns_or_rows(*r, &di, &grads, p),
             };
             fixes.edit_windows(&mut facade);
             facade
@@ -93,3 +96,24 @@ pub fn parse_with(
 
 #[cfg(test)]
 mod fixes_tests;
+
+/// A crisp map (+1 where `window(x, y)`, −1 elsewhere) of `w` × `h` pixels, as the search
+/// reads it, with the matching flat-coloured image's gradients (dark glass on light stone).
+#[cfg(test)]
+pub(crate) fn crisp_map(
+    w: usize,
+    h: usize,
+    window: impl Fn(usize, usize) -> bool,
+) -> (Integral, Gradients) {
+    let map: Vec<f64> = (0..w * h)
+        .map(|i| if window(i % w, i / w) { 1.0 } else { -1.0 })
+        .collect();
+    let img = RgbImage::from_fn(w as u32, h as u32, |x, y| {
+        if window(x as usize, y as usize) {
+            image::Rgb([35, 45, 65])
+        } else {
+            image::Rgb([185, 135, 95])
+        }
+    });
+    (Integral::new(&map, w, h), Gradients::new(&img))
+}

@@ -11,8 +11,14 @@ pub enum Grammar {
     /// ground, middle and top floors each with their own columns (shop floors, attics), a
     /// grid cell whose pixels favour wall left out (missing windows, doors), up to
     /// [`crate::model::MAX_COLUMNS`] columns.
-    #[default]
     Columns,
+    /// `Columns`' free columns, shared by every floor, and free window rows: one floor per
+    /// window row, of any height (`search/rows.rs`).
+    Rows,
+    /// Whichever of the `Columns` and `Rows` fits explains more window evidence (the sum
+    /// both maximise; `search/rows.rs`).
+    #[default]
+    ColumnsOrRows,
 }
 
 /// Search settings.
@@ -75,7 +81,7 @@ impl Default for SearchParams {
             merge_tolerance: 0.05,
             rounds: 3,
             min_facade_frac: 0.05,
-            grammar: Grammar::Columns,
+            grammar: Grammar::ColumnsOrRows,
             clip: 1.0,
             facade_penalty: 0.02,
             min_window_frac: 0.02,
