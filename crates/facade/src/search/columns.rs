@@ -472,7 +472,7 @@ mod tests {
                 || ((11..31).contains(&y) || (46..66).contains(&y))
                     && (0..3).any(|k| (12 + 38 * k..32 + 38 * k).contains(&x))
         };
-        let (d, g) = crate::search::crisp_map(w, h, win);
+        let (d, g) = crate::search::gradients::crisp_map(w, h, win);
         let f = fit_columns([0, 0, w, h], &d, &g, &SearchParams::default());
         let mut windows: Vec<[f64; 4]> = f
             .floors

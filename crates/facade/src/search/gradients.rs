@@ -124,6 +124,27 @@ pub fn peaks(prof: &[f64], max: usize, sep: usize) -> Vec<usize> {
     kept
 }
 
+/// A crisp map (+1 where `window(x, y)`, −1 elsewhere) of `w` × `h` pixels, as the search
+/// reads it, with the matching flat-coloured image's gradients (dark glass on light stone).
+#[cfg(test)]
+pub(crate) fn crisp_map(
+    w: usize,
+    h: usize,
+    window: impl Fn(usize, usize) -> bool,
+) -> (Integral, Gradients) {
+    let map: Vec<f64> = (0..w * h)
+        .map(|i| if window(i % w, i / w) { 1.0 } else { -1.0 })
+        .collect();
+    let img = RgbImage::from_fn(w as u32, h as u32, |x, y| {
+        if window(x as usize, y as usize) {
+            image::Rgb([35, 45, 65])
+        } else {
+            image::Rgb([185, 135, 95])
+        }
+    });
+    (Integral::new(&map, w, h), Gradients::new(&img))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

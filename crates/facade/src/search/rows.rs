@@ -102,7 +102,7 @@ pub fn window_evidence(f: &Facade, d: &Integral) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::search::crisp_map;
+    use crate::search::gradients::crisp_map;
 
     /// A crisp map with windows at the given column and row intervals.
     fn crisp(
