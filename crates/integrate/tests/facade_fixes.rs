@@ -3,43 +3,16 @@
 //! windows, a window removed and one added, in the photo's estimate, in estimate.json (with
 //! "user" as their source) and in the generated program; a bad correction names its entry.
 
-use std::collections::BTreeMap;
-use std::path::Path;
-
 use facade::fixes::FacadeFixes;
 use facade::model::Facade;
 use integrate::estimate::Source;
-use integrate::pipeline::{self, Files};
+use integrate::pipeline::{self, InMemory};
 use integrate::project::Project;
 
-struct Memory(BTreeMap<String, Vec<u8>>);
-
-impl Files for Memory {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        image::load_from_memory(bytes).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        serde_json::from_slice(bytes).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
-
-fn demo() -> (Project, Memory) {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
-    let mut files = BTreeMap::new();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        files.insert(name, std::fs::read(&path).unwrap());
-    }
-    let text = String::from_utf8(files["PROJECT.toml"].clone()).unwrap();
-    (Project::from_toml(&text).unwrap(), Memory(files))
-}
+mod common;
 
 /// The near photo's façade (the one its correspondence points at) under `fix`.
-fn near_facade(project: &Project, files: &Memory, fix: &FacadeFixes) -> (Facade, (u32, u32)) {
+fn near_facade(project: &Project, files: &InMemory, fix: &FacadeFixes) -> (Facade, (u32, u32)) {
     let mut project = project.clone();
     project.facades[0].fix = fix.clone();
     let (e, _) =
@@ -61,7 +34,7 @@ fn centre(w: &[f64; 4]) -> [f64; 2] {
 
 #[test]
 fn reconstruct_honours_every_kind_of_facade_correction() {
-    let (project, files) = demo();
+    let (project, files) = common::example("demo");
     let (found, _) = near_facade(&project, &files, &FacadeFixes::default());
     assert!(found.floors.len() >= 3, "{:?}", per_floor(&found));
 
@@ -191,7 +164,7 @@ fn reconstruct_honours_every_kind_of_facade_correction() {
 
 #[test]
 fn a_bad_correction_names_its_entry_and_nothing_runs() {
-    let (mut project, files) = demo();
+    let (mut project, files) = common::example("demo");
     project.facades[1].fix.floor_lines = Some(vec![40.0, 5000.0]);
     let e = pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|_| {})
         .err()

@@ -9,23 +9,9 @@ use std::collections::BTreeMap;
 use facade::gothic::Theta;
 use facade::gothic::synth::{SynthSpec, Synthetic, synthetic_facade};
 use integrate::estimate::Source;
-use integrate::pipeline::{self, Files};
+use integrate::pipeline::{self, InMemory};
 use integrate::project::Project;
 use integrate::synth::Castle;
-
-struct Memory(BTreeMap<String, Vec<u8>>);
-
-impl Files for Memory {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        image::load_from_memory(bytes).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        serde_json::from_slice(bytes).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
 
 fn png(img: impl Into<image::DynamicImage>) -> Vec<u8> {
     let mut out = std::io::Cursor::new(Vec::new());
@@ -37,7 +23,7 @@ fn png(img: impl Into<image::DynamicImage>) -> Vec<u8> {
 
 /// The castle's plan and a Gothic photo of its keep's north wall; `elements` is the text of
 /// the `[[gothic.element]]` tables.
-fn project(elements: &str) -> (Project, Memory, Synthetic) {
+fn project(elements: &str) -> (Project, InMemory, Synthetic) {
     let castle = Castle::default();
     let synth = synthetic_facade(&SynthSpec::small(), 1);
     let (w, h) = synth.image.dimensions();
@@ -56,7 +42,7 @@ fn project(elements: &str) -> (Project, Memory, Synthetic) {
         north[1]
     );
     let project = Project::from_toml(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let files = Memory(BTreeMap::from([
+    let files = InMemory(BTreeMap::from([
         ("plan.png".to_string(), png(castle.plan())),
         ("gothic.png".to_string(), png(synth.image.clone())),
     ]));

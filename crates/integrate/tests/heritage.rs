@@ -7,17 +7,15 @@
 
 #[path = "../../vsg/tests/support/cjval.rs"]
 mod cjval_check;
+mod common;
 #[path = "../../vsg/tests/support/ifcopenshell.rs"]
 mod ifcopenshell;
 #[path = "../../vsg/tests/support/venv.rs"]
 mod venv;
 
-use std::path::{Path, PathBuf};
-
 use integrate::estimate::Estimate;
 use integrate::heritage::{Site, heritage};
-use integrate::pipeline::{self, Files};
-use integrate::project::Project;
+use integrate::pipeline;
 use integrate::{Inputs, integrate, program, synth::Castle};
 use plan::scale::GivenScale;
 use vsg::export::semantics::{Attribute, Heritage, part_totals};
@@ -148,26 +146,10 @@ fn a_site_out_of_range_names_its_key() {
     assert!(err.to_string().contains("[site] epsg = 99999"), "{err}");
 }
 
-struct Folder(PathBuf);
-
-impl Files for Folder {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        image::open(self.0.join(name)).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let text =
-            std::fs::read_to_string(self.0.join(name)).map_err(|e| format!("{name}: {e}"))?;
-        serde_json::from_str(&text).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
-
 /// `castellan demo`'s project, placed on Lambert-93 (the coordinates are only an example).
 #[test]
 fn the_coucy_demo_is_valid_cityjson_and_ifc_with_a_part_per_structure() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coucy");
-    let text = std::fs::read_to_string(dir.join("PROJECT.toml")).unwrap();
-    let mut project = Project::from_toml(&text).unwrap();
+    let (mut project, files) = common::example("coucy");
     project.site = Some(Site {
         name: Some("Coucy".into()),
         epsg: 2154,
@@ -175,13 +157,8 @@ fn the_coucy_demo_is_valid_cityjson_and_ifc_with_a_part_per_structure() {
         at: Some([400.0, 300.0]),
         north: 10.0,
     });
-    let r = pipeline::reconstruct(
-        &project,
-        &Folder(dir),
-        &pipeline::Options::default(),
-        &|_| {},
-    )
-    .unwrap();
+    let r =
+        pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|_| {}).unwrap();
     let structures = r.estimate.structures.len();
     let city = &r.exports.cityjson;
     cjval_check::assert_cjval_valid("coucy demo", city);

@@ -2,43 +2,15 @@
 //! stage reports, the progress steps add up, the products and overlays are named as the
 //! commands write them, and a missing or bad file is an error naming its PROJECT.toml entry.
 
-use std::collections::BTreeMap;
-use std::path::Path;
 use std::sync::Mutex;
 
-use integrate::pipeline::{self, Files, PipelineError, Progress, Stage};
-use integrate::project::Project;
+use integrate::pipeline::{self, PipelineError, Progress, Stage};
 
-/// The project's files, read once into memory.
-struct Memory(BTreeMap<String, Vec<u8>>);
-
-impl Files for Memory {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        image::load_from_memory(bytes).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        serde_json::from_slice(bytes).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
-
-fn demo() -> (Project, Memory) {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
-    let mut files = BTreeMap::new();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        files.insert(name, std::fs::read(&path).unwrap());
-    }
-    let text = String::from_utf8(files["PROJECT.toml"].clone()).unwrap();
-    (Project::from_toml(&text).unwrap(), Memory(files))
-}
+mod common;
 
 #[test]
 fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
-    let (project, files) = demo();
+    let (project, files) = common::example("demo");
     let heard = Mutex::new(Vec::new());
     let r = pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|p| {
         heard.lock().unwrap().push(p)
@@ -173,7 +145,7 @@ fn the_synthetic_project_runs_from_memory_with_every_stage_and_step_reported() {
 
 #[test]
 fn a_missing_or_bad_file_names_its_entry() {
-    let (project, mut files) = demo();
+    let (project, mut files) = common::example("demo");
     files.0.remove("keep_south_far.training.json");
     let e = pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|_| {})
         .err()
@@ -184,7 +156,7 @@ fn a_missing_or_bad_file_names_its_entry() {
         "[[facade]] #2 (image = \"keep_south_far.png\"): keep_south_far.training.json: no such file"
     );
 
-    let (project, mut files) = demo();
+    let (project, mut files) = common::example("demo");
     files.0.insert("plan.png".into(), b"not a png".to_vec());
     let e = pipeline::parse_plan(&project, &files).err().unwrap();
     assert!(
@@ -195,7 +167,7 @@ fn a_missing_or_bad_file_names_its_entry() {
 
 #[test]
 fn training_boxes_have_one_rule_inline_or_from_their_file() {
-    let (project, files) = demo();
+    let (project, files) = common::example("demo");
     let from_file = pipeline::training(&project.facades[0], &files).unwrap();
     let mut inline = project.facades[0].clone();
     inline.training = integrate::project::TrainingSource::Inline(from_file.clone());

@@ -3,39 +3,14 @@
 //! figures and the whole development set: `cargo run --release -p integrate --example
 //! plan_model_agreement`.
 
-use std::path::{Path, PathBuf};
-
 use integrate::agreement::Agreement;
-use integrate::pipeline::{self, Files, Reconstruction};
-use integrate::project::Project;
+use integrate::pipeline::{self, Reconstruction};
 
-struct Folder(PathBuf);
-
-impl Files for Folder {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        image::open(self.0.join(name)).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let text =
-            std::fs::read_to_string(self.0.join(name)).map_err(|e| format!("{name}: {e}"))?;
-        serde_json::from_str(&text).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
+mod common;
 
 fn reconstruct(example: &str) -> Reconstruction {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(example);
-    let text = std::fs::read_to_string(dir.join("PROJECT.toml")).unwrap();
-    let project = Project::from_toml(&text).unwrap();
-    pipeline::reconstruct(
-        &project,
-        &Folder(dir),
-        &pipeline::Options::default(),
-        &|_| {},
-    )
-    .unwrap()
+    let (project, files) = common::example(example);
+    pipeline::reconstruct(&project, &files, &pipeline::Options::default(), &|_| {}).unwrap()
 }
 
 fn show(a: &Agreement) -> String {

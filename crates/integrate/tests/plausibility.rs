@@ -2,41 +2,17 @@
 //! synthetic castle, each on an input made to trip it — and the run still succeeds.
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
-use integrate::pipeline::{self, Files};
+use integrate::pipeline::{self, InMemory};
 use integrate::plausibility::Warning;
 use integrate::project::Project;
 
+mod common;
+
 /// A project's files in memory.
-struct Memory(BTreeMap<String, Vec<u8>>);
-
-impl Files for Memory {
-    fn image(&self, name: &str) -> Result<image::DynamicImage, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        image::load_from_memory(bytes).map_err(|e| format!("{name}: {e}"))
-    }
-
-    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
-        let bytes = self.0.get(name).ok_or(format!("{name}: no such file"))?;
-        serde_json::from_slice(bytes).map_err(|e| format!("{name} is not {what}: {e}"))
-    }
-}
-
-fn demo_files() -> BTreeMap<String, Vec<u8>> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo");
-    let mut files = BTreeMap::new();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        files.insert(name, std::fs::read(&path).unwrap());
-    }
-    files
-}
-
 fn run(toml: &str, files: BTreeMap<String, Vec<u8>>) -> Vec<Warning> {
     let project = Project::from_toml(toml).unwrap();
-    pipeline::reconstruct(&project, &Memory(files), &Default::default(), &|_| {})
+    pipeline::reconstruct(&project, &InMemory(files), &Default::default(), &|_| {})
         .unwrap()
         .warnings
 }
@@ -47,7 +23,7 @@ fn png(image: &image::GrayImage) -> Vec<u8> {
 
 #[test]
 fn the_synthetic_demo_raises_no_warning() {
-    let files = demo_files();
+    let files = common::example_files("demo");
     let toml = String::from_utf8(files["PROJECT.toml"].clone()).unwrap();
     assert_eq!(run(&toml, files), vec![]);
 }
@@ -78,7 +54,7 @@ fn a_drawing_without_a_wall_graph_warns_that_no_walls_were_read() {
 #[test]
 fn a_scale_that_makes_the_demo_castle_a_toy_warns() {
     // The synthetic plan at 1 mm a pixel instead of 0.1 m: well under a metre across.
-    let files = demo_files();
+    let files = common::example_files("demo");
     let plan_only = "plan = \"plan.png\"\nscale = 0.001\n";
     let w = run(plan_only, files);
     assert!(
@@ -90,9 +66,10 @@ fn a_scale_that_makes_the_demo_castle_a_toy_warns() {
 
 #[test]
 fn a_scale_bar_missing_from_the_drawing_warns_and_the_model_is_in_pixels() {
-    let files = demo_files();
+    let files = common::example_files("demo");
     let project = Project::from_toml("plan = \"plan.png\"\nscale_bar = 30\n").unwrap();
-    let r = pipeline::reconstruct(&project, &Memory(files), &Default::default(), &|_| {}).unwrap();
+    let r =
+        pipeline::reconstruct(&project, &InMemory(files), &Default::default(), &|_| {}).unwrap();
     assert_eq!(
         r.warnings,
         vec![Warning::ScaleBarNotFound {

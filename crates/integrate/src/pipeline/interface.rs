@@ -2,6 +2,8 @@
 //! settings beyond the project's ([`Options`]), the error naming the entry at fault
 //! ([`PipelineError`]) and the overlays every stage returns ([`Overlay`], [`Picture`]).
 
+use std::collections::BTreeMap;
+
 use facade::classify::Method;
 use image::{DynamicImage, GrayImage, RgbImage};
 
@@ -10,12 +12,37 @@ use crate::project::Project;
 
 /// The files a project names (the plan, photos, TRAINING.json, LINES.json), read by the
 /// caller: from a folder (`castellan reconstruct`), a confined project store (`serve`), or
-/// memory (tests). Errors are the caller's message (the file, the pixel budget, …).
+/// memory ([`InMemory`]: tests). Errors are the caller's message (the file, the pixel budget, …).
 pub trait Files: Sync {
     /// The image `name` (a path relative to PROJECT.toml), decoded.
     fn image(&self, name: &str) -> Result<DynamicImage, String>;
     /// The JSON file `name`, parsed; errors name `name:line:column`.
     fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String>;
+}
+
+/// A project's files held in memory by name: for a caller that has the bytes already (the
+/// tests; a project received whole). JSON errors name `name:line:column`, as a folder's do.
+#[derive(Debug, Clone, Default)]
+pub struct InMemory(pub BTreeMap<String, Vec<u8>>);
+
+impl InMemory {
+    fn bytes(&self, name: &str) -> Result<&[u8], String> {
+        self.0
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| format!("{name}: no such file"))
+    }
+}
+
+impl Files for InMemory {
+    fn image(&self, name: &str) -> Result<DynamicImage, String> {
+        image::load_from_memory(self.bytes(name)?).map_err(|e| format!("{name}: {e}"))
+    }
+
+    fn json<T: serde::de::DeserializeOwned>(&self, name: &str, what: &str) -> Result<T, String> {
+        serde_json::from_slice(self.bytes(name)?)
+            .map_err(|e| format!("{name}:{}:{}: not {what}: {e}", e.line(), e.column()))
+    }
 }
 
 /// Why a reconstruction failed: the PROJECT.toml entry at fault and what went wrong.
@@ -90,5 +117,34 @@ impl Picture {
             Picture::Rgb(img) => encode_png(img),
             Picture::Grey(img) => encode_png(img),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn in_memory_files_name_the_file_and_the_json_error_at_line_and_column() {
+        let files = InMemory(BTreeMap::from([
+            (
+                "a.json".to_string(),
+                b"{\n  \"x\": [1,\n  oops]\n}".to_vec(),
+            ),
+            ("b.json".to_string(), b"[1, 2]".to_vec()),
+        ]));
+        let err = files
+            .json::<serde_json::Value>("a.json", "a list")
+            .unwrap_err();
+        assert!(err.starts_with("a.json:3:3: not a list: "), "{err}");
+        assert_eq!(
+            files.json::<Vec<u8>>("b.json", "a list").unwrap(),
+            vec![1, 2]
+        );
+        assert_eq!(
+            files.image("c.png").unwrap_err(),
+            "c.png: no such file".to_string()
+        );
+        assert!(files.image("b.json").unwrap_err().starts_with("b.json: "));
     }
 }

@@ -27,7 +27,7 @@ mod interface;
 mod photos;
 
 use interface::at;
-pub use interface::{Files, Options, Overlay, Picture, PipelineError, encode_png};
+pub use interface::{Files, InMemory, Options, Overlay, Picture, PipelineError, encode_png};
 pub use photos::{estimate_gothic_photo, estimate_photo, training};
 
 /// The steps of [`reconstruct`], in order.
