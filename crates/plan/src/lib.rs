@@ -541,7 +541,7 @@ fn parse_grey(
     mark_tower_walls(&mut labels, &walls, &rings, Label::is_wall);
     let mut bulge_towers = match curtain {
         Some(c) if opts.bulge_towers => {
-            find_bulge_towers(&mut labels, &walls, c, outer_median.unwrap_or(0.0))
+            find_bulge_towers(&mut labels, grey, &walls, c, outer_median.unwrap_or(0.0))
         }
         _ => Vec::new(),
     };
@@ -580,9 +580,12 @@ fn parse_grey(
 }
 
 /// Bulge towers of the outline, measured against the curtain's thickness `curtain` and the
-/// outer walls' median thickness `median`; their outer-wall pixels become tower walls.
+/// outer walls' median thickness `median`; their outer-wall pixels become tower walls, and
+/// those of a wide bulge's heart that the drawing `grey` leaves open tower room
+/// ([`thick_towers::bulge_rooms`]).
 fn find_bulge_towers(
     labels: &mut [u8],
+    grey: &image::GrayImage,
     walls: &Mask,
     curtain: f64,
     median: f64,
@@ -595,6 +598,8 @@ fn find_bulge_towers(
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
     towers.retain(|t| t.radius >= 0.4 * median);
     mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
+    let paper_from = binarize::threshold_level(grey);
+    thick_towers::bulge_rooms(labels, grey, paper_from, &towers, curtain);
     towers
 }
 

@@ -97,17 +97,55 @@ const ROOM_FROM: f64 = 1.0;
 /// ribs).
 pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
     for t in towers.iter().filter(|t| t.radius >= ROOM_FROM * curtain) {
-        let room = BulgeTower {
-            center: t.center,
-            // `pixels` grows a disc by a pixel.
-            radius: t.radius - t.wall_width(Some(curtain)) - 1.0,
-        };
-        for i in room.pixels(width, height) {
+        for i in room(t, curtain).pixels(width, height) {
             if labels[i] == Label::TowerWall as u8 {
                 labels[i] = Label::TowerRoom as u8;
             }
         }
     }
+}
+
+/// The disc of a tower's room: inside its wall ring, less the pixel that
+/// [`BulgeTower::pixels`] grows a disc by.
+fn room(t: &BulgeTower, curtain: f64) -> BulgeTower {
+    BulgeTower {
+        center: t.center,
+        radius: t.radius - t.wall_width(Some(curtain)) - 1.0,
+    }
+}
+
+/// A bulge's heart holds a room only where the drawing leaves at least this fraction of it
+/// paper (vault ribs, a stair, a room the ink filled); a heart drawn solid is a solid tower.
+const OPEN_HEART: f64 = 0.2;
+
+/// The rooms of the outline's bulges ([`crate::bulges`]), as [`rooms`] gives thick towers
+/// theirs, for the bulges whose heart the drawing `grey` leaves open: at least [`OPEN_HEART`]
+/// of it at or above `paper_from` (§5.1.2's threshold, [`crate::binarize::threshold_level`]). `curtain` is the thickness the bulges were measured
+/// against ([`crate::bulges::curtain_thickness`]). Issue 26: with bulges 0.8 curtains deep
+/// the outline finds Pierrefonds' east tower before the thick-tower finder does, and its
+/// vault ribs, which the ink reads as wall, lost it its room (docs/plan.md, "Shallower
+/// bulges").
+pub fn bulge_rooms(
+    labels: &mut [u8],
+    grey: &image::GrayImage,
+    paper_from: u8,
+    towers: &[BulgeTower],
+    curtain: f64,
+) {
+    let (w, h) = grey.dimensions();
+    let open: Vec<BulgeTower> = towers
+        .iter()
+        .filter(|t| {
+            let (mut n, mut paper) = (0usize, 0usize);
+            for i in room(t, curtain).pixels(w, h) {
+                n += 1;
+                paper += usize::from(grey.as_raw()[i] >= paper_from);
+            }
+            n > 0 && paper as f64 >= OPEN_HEART * n as f64
+        })
+        .copied()
+        .collect();
+    rooms(labels, w, h, &open, curtain);
 }
 
 /// Whether any pixel of the tower's disc (its radius plus one) has the label.
@@ -243,5 +281,44 @@ mod tests {
             .count();
         // The disc of radius 7 (inclusive): 149 pixels.
         assert_eq!(room, 149);
+    }
+
+    #[test]
+    fn a_bulge_has_a_room_only_where_the_drawing_leaves_its_heart_open() {
+        // Two bulges of radius 14 on a curtain of 8 px, read as tower wall throughout. The
+        // left one is drawn with its heart striped (every other column paper, half of it: a
+        // vault's ribs), the right one solid black.
+        let (w, h) = (100u32, 40u32);
+        let towers = [
+            BulgeTower {
+                center: [30.0, 20.0],
+                radius: 14.0,
+            },
+            BulgeTower {
+                center: [75.0, 20.0],
+                radius: 14.0,
+            },
+        ];
+        let grey = image::GrayImage::from_fn(w, h, |x, _| {
+            image::Luma([if x < 50 && x % 2 == 0 { 250 } else { 10 }])
+        });
+        let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
+        bulge_rooms(&mut labels, &grey, 128, &towers, 8.0);
+        let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
+        assert_eq!(at(30, 20), Label::TowerRoom, "the striped heart");
+        assert_eq!(at(75, 20), Label::TowerWall, "the solid heart");
+        let room = labels
+            .iter()
+            .filter(|&&l| l == Label::TowerRoom as u8)
+            .count();
+        // As for a thick tower of the same size: the disc of radius 7, 149 pixels.
+        assert_eq!(room, 149);
+        // Paper on under a fifth of the heart is no room: at most one column in five.
+        let sparse = image::GrayImage::from_fn(w, h, |x, _| {
+            image::Luma([if x % 6 == 0 { 250 } else { 10 }])
+        });
+        let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
+        bulge_rooms(&mut labels, &sparse, 128, &towers, 8.0);
+        assert!(!labels.contains(&(Label::TowerRoom as u8)));
     }
 }

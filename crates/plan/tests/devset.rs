@@ -47,16 +47,16 @@ fn measure(file: &str, ink: InkMethod) -> Option<Totals> {
     Some(Totals::of(&scores))
 }
 
-/// Floors at the figures measured (docs/plan.md; session 26: learned ink 145 / 4 and 132 / 6,
-/// rules 133 / 6 and 76 / 3; session 28: the wall-ink network 145 / 5 and 118 / 3), less a
-/// margin of five points and about two towers for platform differences in resizing: (points
-/// right, exact towers).
+/// Floors at the figures measured (docs/plan.md; session 34, "Shallower bulges": learned ink
+/// 145 / 6 and 133 / 7, rules 133 / 6 and 76 / 3, the wall-ink network 146 / 6 and 117 / 3),
+/// less a margin of five points and about two towers for platform differences in resizing:
+/// (points right, exact towers).
 const FLOORS: [(&str, InkMethod, usize, usize); 6] = [
-    ("tests/data/devset.json", InkMethod::Learned, 140, 2),
-    ("tests/data/devset.json", InkMethod::Network, 140, 3),
+    ("tests/data/devset.json", InkMethod::Learned, 140, 4),
+    ("tests/data/devset.json", InkMethod::Network, 141, 4),
     ("tests/data/devset.json", InkMethod::Rules, 128, 4),
-    ("tests/data/devset_more.json", InkMethod::Learned, 127, 4),
-    ("tests/data/devset_more.json", InkMethod::Network, 113, 1),
+    ("tests/data/devset_more.json", InkMethod::Learned, 128, 5),
+    ("tests/data/devset_more.json", InkMethod::Network, 112, 1),
     ("tests/data/devset_more.json", InkMethod::Rules, 71, 2),
 ];
 
