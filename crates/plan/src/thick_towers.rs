@@ -253,34 +253,35 @@ mod tests {
         assert!(find(&m, &surroundings(100, 60), 20.0).is_empty());
     }
 
+    /// Towers at (30, 20) and (75, 20) of the given radii, side by side in a 100 × 40 image.
+    fn two_towers(left: f64, right: f64) -> [BulgeTower; 2] {
+        [[30.0, left], [75.0, right]].map(|[x, radius]| BulgeTower {
+            center: [x, 20.0],
+            radius,
+        })
+    }
+
+    fn room_pixels(labels: &[u8]) -> usize {
+        labels
+            .iter()
+            .filter(|&&l| l == Label::TowerRoom as u8)
+            .count()
+    }
+
     #[test]
     fn a_wide_thick_tower_has_its_room_inside_its_ring_and_a_narrow_one_none() {
         // Curtain 8 px: a tower of radius 14 (≥ 8) gets a room inside a ring of
         // min(8, 14 / 2) = 7 px; one of radius 7 stays solid.
         let (w, h) = (100u32, 40u32);
-        let towers = [
-            BulgeTower {
-                center: [30.0, 20.0],
-                radius: 14.0,
-            },
-            BulgeTower {
-                center: [75.0, 20.0],
-                radius: 7.0,
-            },
-        ];
         let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
-        rooms(&mut labels, w, h, &towers, 8.0);
+        rooms(&mut labels, w, h, &two_towers(14.0, 7.0), 8.0);
         let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
         assert_eq!(at(30, 20), Label::TowerRoom, "the wide tower's centre");
         assert_eq!(at(36, 20), Label::TowerRoom, "6 px out: inside the ring");
         assert_eq!(at(38, 20), Label::TowerWall, "8 px out: the ring");
         assert_eq!(at(75, 20), Label::TowerWall, "the narrow tower stays solid");
-        let room = labels
-            .iter()
-            .filter(|&&l| l == Label::TowerRoom as u8)
-            .count();
         // The disc of radius 7 (inclusive): 149 pixels.
-        assert_eq!(room, 149);
+        assert_eq!(room_pixels(&labels), 149);
     }
 
     #[test]
@@ -289,16 +290,7 @@ mod tests {
         // left one is drawn with its heart striped (every other column paper, half of it: a
         // vault's ribs), the right one solid black.
         let (w, h) = (100u32, 40u32);
-        let towers = [
-            BulgeTower {
-                center: [30.0, 20.0],
-                radius: 14.0,
-            },
-            BulgeTower {
-                center: [75.0, 20.0],
-                radius: 14.0,
-            },
-        ];
+        let towers = two_towers(14.0, 14.0);
         let grey = image::GrayImage::from_fn(w, h, |x, _| {
             image::Luma([if x < 50 && x % 2 == 0 { 250 } else { 10 }])
         });
@@ -307,12 +299,8 @@ mod tests {
         let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
         assert_eq!(at(30, 20), Label::TowerRoom, "the striped heart");
         assert_eq!(at(75, 20), Label::TowerWall, "the solid heart");
-        let room = labels
-            .iter()
-            .filter(|&&l| l == Label::TowerRoom as u8)
-            .count();
         // As for a thick tower of the same size: the disc of radius 7, 149 pixels.
-        assert_eq!(room, 149);
+        assert_eq!(room_pixels(&labels), 149);
         // Paper on under a fifth of the heart is no room: at most one column in five.
         let sparse = image::GrayImage::from_fn(w, h, |x, _| {
             image::Luma([if x % 6 == 0 { 250 } else { 10 }])
