@@ -599,7 +599,8 @@ fn find_bulge_towers(
     towers.retain(|t| t.radius >= 0.4 * median);
     mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
     let paper_from = binarize::threshold_level(grey);
-    thick_towers::bulge_rooms(labels, grey, paper_from, &towers, curtain);
+    let ring = if median > 0.0 { median } else { curtain };
+    thick_towers::bulge_rooms(labels, grey, paper_from, &towers, curtain, ring);
     towers
 }
 

@@ -96,7 +96,17 @@ const ROOM_FROM: f64 = 1.0;
 /// annotates a room at the heart of such towers (Villandraut's, drawn black with white vault
 /// ribs).
 pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
-    for t in towers.iter().filter(|t| t.radius >= ROOM_FROM * curtain) {
+    let wide: Vec<BulgeTower> = towers
+        .iter()
+        .filter(|t| t.radius >= ROOM_FROM * curtain)
+        .copied()
+        .collect();
+    carve_rooms(labels, width, height, &wide, curtain);
+}
+
+/// The tower-wall pixels of each tower's room ([`room`]) become tower room.
+fn carve_rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
+    for t in towers {
         for i in room(t, curtain).pixels(width, height) {
             if labels[i] == Label::TowerWall as u8 {
                 labels[i] = Label::TowerRoom as u8;
@@ -105,8 +115,8 @@ pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], 
     }
 }
 
-/// The disc of a tower's room: inside its wall ring, less the pixel that
-/// [`BulgeTower::pixels`] grows a disc by.
+/// The disc of a tower's room: inside its wall ring ([`BulgeTower::wall_width`] of the
+/// curtain `curtain`), less the pixel that [`BulgeTower::pixels`] grows a disc by.
 fn room(t: &BulgeTower, curtain: f64) -> BulgeTower {
     BulgeTower {
         center: t.center,
@@ -120,24 +130,28 @@ const OPEN_HEART: f64 = 0.2;
 
 /// The rooms of the outline's bulges ([`crate::bulges`]), as [`rooms`] gives thick towers
 /// theirs, for the bulges whose heart the drawing `grey` leaves open: at least [`OPEN_HEART`]
-/// of it at or above `paper_from` (§5.1.2's threshold, [`crate::binarize::threshold_level`]). `curtain` is the thickness the bulges were measured
-/// against ([`crate::bulges::curtain_thickness`]). Issue 26: with bulges 0.8 curtains deep
-/// the outline finds Pierrefonds' east tower before the thick-tower finder does, and its
-/// vault ribs, which the ink reads as wall, lost it its room (docs/plan.md, "Shallower
-/// bulges").
+/// of it at or above `paper_from` (§5.1.2's threshold,
+/// [`crate::binarize::threshold_level`]). A bulge is wide enough against `curtain`, the
+/// thickness it was measured against ([`crate::bulges::curtain_thickness`]); its ring is as
+/// thick as the model builds it, from `median` (as for [`rooms`]). Issue 26: with bulges 0.8
+/// curtains deep the outline finds Pierrefonds' east tower before the thick-tower finder
+/// does, and its vault ribs, which the ink reads as wall, lost it its room (docs/plan.md,
+/// "Shallower bulges").
 pub fn bulge_rooms(
     labels: &mut [u8],
     grey: &image::GrayImage,
     paper_from: u8,
     towers: &[BulgeTower],
     curtain: f64,
+    median: f64,
 ) {
     let (w, h) = grey.dimensions();
     let open: Vec<BulgeTower> = towers
         .iter()
+        .filter(|t| t.radius >= ROOM_FROM * curtain)
         .filter(|t| {
             let (mut n, mut paper) = (0usize, 0usize);
-            for i in room(t, curtain).pixels(w, h) {
+            for i in room(t, median).pixels(w, h) {
                 n += 1;
                 paper += usize::from(grey.as_raw()[i] >= paper_from);
             }
@@ -145,7 +159,7 @@ pub fn bulge_rooms(
         })
         .copied()
         .collect();
-    rooms(labels, w, h, &open, curtain);
+    carve_rooms(labels, w, h, &open, median);
 }
 
 /// Whether any pixel of the tower's disc (its radius plus one) has the label.
@@ -295,18 +309,18 @@ mod tests {
             image::Luma([if x < 50 && x % 2 == 0 { 250 } else { 10 }])
         });
         let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
-        bulge_rooms(&mut labels, &grey, 128, &towers, 8.0);
+        bulge_rooms(&mut labels, &grey, 128, &towers, 8.0, 8.0);
         let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
         assert_eq!(at(30, 20), Label::TowerRoom, "the striped heart");
         assert_eq!(at(75, 20), Label::TowerWall, "the solid heart");
         // As for a thick tower of the same size: the disc of radius 7, 149 pixels.
         assert_eq!(room_pixels(&labels), 149);
-        // Paper on under a fifth of the heart is no room: at most one column in five.
+        // Paper on under a fifth of the heart is no room: one column in six.
         let sparse = image::GrayImage::from_fn(w, h, |x, _| {
             image::Luma([if x % 6 == 0 { 250 } else { 10 }])
         });
         let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
-        bulge_rooms(&mut labels, &sparse, 128, &towers, 8.0);
+        bulge_rooms(&mut labels, &sparse, 128, &towers, 8.0, 8.0);
         assert!(!labels.contains(&(Label::TowerRoom as u8)));
     }
 }
