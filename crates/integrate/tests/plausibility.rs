@@ -9,7 +9,7 @@ use integrate::project::Project;
 
 mod common;
 
-/// A project's files in memory.
+/// The warnings of reconstructing the project `toml` from `files`, held in memory.
 fn run(toml: &str, files: BTreeMap<String, Vec<u8>>) -> Vec<Warning> {
     let project = Project::from_toml(toml).unwrap();
     pipeline::reconstruct(&project, &InMemory(files), &Default::default(), &|_| {})

@@ -598,9 +598,8 @@ fn find_bulge_towers(
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
     towers.retain(|t| t.radius >= 0.4 * median);
     mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
-    let paper_from = binarize::threshold_level(grey);
     let ring = if median > 0.0 { median } else { curtain };
-    thick_towers::bulge_rooms(labels, grey, paper_from, &towers, curtain, ring);
+    thick_towers::bulge_rooms(labels, grey, &towers, curtain, ring);
     towers
 }
 

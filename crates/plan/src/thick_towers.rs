@@ -130,8 +130,8 @@ const OPEN_HEART: f64 = 0.2;
 
 /// The rooms of the outline's bulges ([`crate::bulges`]), as [`rooms`] gives thick towers
 /// theirs, for the bulges whose heart the drawing `grey` leaves open: at least [`OPEN_HEART`]
-/// of it at or above `paper_from` (§5.1.2's threshold,
-/// [`crate::binarize::threshold_level`]). A bulge is wide enough against `curtain`, the
+/// of it paper by §5.1.2's threshold ([`crate::binarize::threshold_level`], taken only when a
+/// bulge is wide enough to have a room). A bulge is wide enough against `curtain`, the
 /// thickness it was measured against ([`crate::bulges::curtain_thickness`]); its ring is as
 /// thick as the model builds it, from `median` (as for [`rooms`]). Issue 26: with bulges 0.8
 /// curtains deep the outline finds Pierrefonds' east tower before the thick-tower finder
@@ -140,15 +140,21 @@ const OPEN_HEART: f64 = 0.2;
 pub fn bulge_rooms(
     labels: &mut [u8],
     grey: &image::GrayImage,
-    paper_from: u8,
     towers: &[BulgeTower],
     curtain: f64,
     median: f64,
 ) {
-    let (w, h) = grey.dimensions();
-    let open: Vec<BulgeTower> = towers
+    let wide: Vec<&BulgeTower> = towers
         .iter()
         .filter(|t| t.radius >= ROOM_FROM * curtain)
+        .collect();
+    if wide.is_empty() {
+        return;
+    }
+    let (w, h) = grey.dimensions();
+    let paper_from = crate::binarize::threshold_level(grey);
+    let open: Vec<BulgeTower> = wide
+        .into_iter()
         .filter(|t| {
             let (mut n, mut paper) = (0usize, 0usize);
             for i in room(t, median).pixels(w, h) {
@@ -309,7 +315,7 @@ mod tests {
             image::Luma([if x < 50 && x % 2 == 0 { 250 } else { 10 }])
         });
         let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
-        bulge_rooms(&mut labels, &grey, 128, &towers, 8.0, 8.0);
+        bulge_rooms(&mut labels, &grey, &towers, 8.0, 8.0);
         let at = |x: u32, y: u32| Label::ALL[labels[(y * w + x) as usize] as usize];
         assert_eq!(at(30, 20), Label::TowerRoom, "the striped heart");
         assert_eq!(at(75, 20), Label::TowerWall, "the solid heart");
@@ -320,7 +326,7 @@ mod tests {
             image::Luma([if x % 6 == 0 { 250 } else { 10 }])
         });
         let mut labels = vec![Label::TowerWall as u8; (w * h) as usize];
-        bulge_rooms(&mut labels, &sparse, 128, &towers, 8.0, 8.0);
+        bulge_rooms(&mut labels, &sparse, &towers, 8.0, 8.0);
         assert!(!labels.contains(&(Label::TowerRoom as u8)));
     }
 }
