@@ -406,7 +406,12 @@ fn parse_grey(
     };
     let is_learned = learned.is_some();
     let (mut bin, mut pre) = match learned {
-        Some(mask) => binarize::preprocess_learned(mask, opts.min_region, opts.one_building),
+        Some(mask) => binarize::preprocess_learned(
+            mask,
+            opts.min_region,
+            opts.one_building,
+            opts.ink == ink::InkMethod::Learned,
+        ),
         None => binarize::preprocess_clean(grey, opts.min_region, &cleanup, opts.one_building),
     };
     laps.lap("preprocess");

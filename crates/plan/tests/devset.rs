@@ -47,12 +47,12 @@ fn measure(file: &str, ink: InkMethod) -> Option<Totals> {
     Some(Totals::of(&scores))
 }
 
-/// Floors at the figures measured (docs/plan.md; session 34, "Shallower bulges": learned ink
-/// 145 / 6 and 133 / 7, rules 133 / 6 and 76 / 3, the wall-ink network 146 / 6 and 117 / 3),
+/// Floors at the figures measured (docs/plan.md; session 35, "Small rooms kept open": learned
+/// ink 145 / 8 and 133 / 7, rules 133 / 6 and 76 / 3, the wall-ink network 146 / 6 and 117 / 3),
 /// less a margin of five points and about two towers for platform differences in resizing:
 /// (points right, exact towers).
 const FLOORS: [(&str, InkMethod, usize, usize); 6] = [
-    ("tests/data/devset.json", InkMethod::Learned, 140, 4),
+    ("tests/data/devset.json", InkMethod::Learned, 140, 6),
     ("tests/data/devset.json", InkMethod::Network, 141, 4),
     ("tests/data/devset.json", InkMethod::Rules, 128, 4),
     ("tests/data/devset_more.json", InkMethod::Learned, 128, 5),
