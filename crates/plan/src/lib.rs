@@ -546,7 +546,7 @@ fn parse_grey(
     mark_tower_walls(&mut labels, &walls, &rings, Label::is_wall);
     let mut bulge_towers = match curtain {
         Some(c) if opts.bulge_towers => {
-            find_bulge_towers(&mut labels, grey, &walls, c, outer_median.unwrap_or(0.0))
+            find_bulge_towers(&mut labels, grey, &walls, c, outer_median)
         }
         _ => Vec::new(),
     };
@@ -585,15 +585,16 @@ fn parse_grey(
 }
 
 /// Bulge towers of the outline, measured against the curtain's thickness `curtain` and the
-/// outer walls' median thickness `median`; their outer-wall pixels become tower walls, and
-/// those of a wide bulge's heart that the drawing `grey` leaves open tower room
+/// outer walls' median thickness `median` (`None` without outer-wall edges; the bulges'
+/// rooms then take their ring from the curtain); their outer-wall pixels become tower walls,
+/// and those of a wide bulge's heart that the drawing `grey` leaves open tower room
 /// ([`thick_towers::bulge_rooms`]).
 fn find_bulge_towers(
     labels: &mut [u8],
     grey: &image::GrayImage,
     walls: &Mask,
     curtain: f64,
-    median: f64,
+    median: Option<f64>,
 ) -> Vec<bulges::BulgeTower> {
     let mut towers = bulges::find(labels, walls.width, walls.height, curtain);
     // A letter or a dot drawn against the curtain bulges too, but a tower is wider than the
@@ -601,10 +602,9 @@ fn find_bulge_towers(
     // edges, as integration takes the curtain) were, on the development set, exactly the
     // letter O on Sully's plan and a dot on the Tower of London's (2.8 and 3.6 px against
     // 10–12 px); 0.5 also dropped a real half-round tower of the Louvre (5.5 px against 11).
-    towers.retain(|t| t.radius >= 0.4 * median);
+    towers.retain(|t| t.radius >= 0.4 * median.unwrap_or(0.0));
     mark_tower_walls(labels, walls, &towers, |l| l == Label::CastleOuterWall);
-    let ring = if median > 0.0 { median } else { curtain };
-    thick_towers::bulge_rooms(labels, grey, &towers, curtain, ring);
+    thick_towers::bulge_rooms(labels, grey, &towers, curtain, median.unwrap_or(curtain));
     towers
 }
 

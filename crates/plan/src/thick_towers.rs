@@ -96,16 +96,23 @@ const ROOM_FROM: f64 = 1.0;
 /// annotates a room at the heart of such towers (Villandraut's, drawn black with white vault
 /// ribs).
 pub fn rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
-    let wide: Vec<BulgeTower> = towers
-        .iter()
-        .filter(|t| t.radius >= ROOM_FROM * curtain)
-        .copied()
-        .collect();
-    carve_rooms(labels, width, height, &wide, curtain);
+    let wide = towers.iter().filter(|t| wide_enough(t, curtain));
+    carve_rooms(labels, width, height, wide, curtain);
+}
+
+/// Whether a tower is wide enough for a room: at least [`ROOM_FROM`] times `curtain` in radius.
+fn wide_enough(t: &BulgeTower, curtain: f64) -> bool {
+    t.radius >= ROOM_FROM * curtain
 }
 
 /// The tower-wall pixels of each tower's room ([`room`]) become tower room.
-fn carve_rooms(labels: &mut [u8], width: u32, height: u32, towers: &[BulgeTower], curtain: f64) {
+fn carve_rooms<'a>(
+    labels: &mut [u8],
+    width: u32,
+    height: u32,
+    towers: impl IntoIterator<Item = &'a BulgeTower>,
+    curtain: f64,
+) {
     for t in towers {
         for i in room(t, curtain).pixels(width, height) {
             if labels[i] == Label::TowerWall as u8 {
@@ -144,28 +151,22 @@ pub fn bulge_rooms(
     curtain: f64,
     median: f64,
 ) {
-    let wide: Vec<&BulgeTower> = towers
-        .iter()
-        .filter(|t| t.radius >= ROOM_FROM * curtain)
-        .collect();
-    if wide.is_empty() {
+    if !towers.iter().any(|t| wide_enough(t, curtain)) {
         return;
     }
     let (w, h) = grey.dimensions();
     let paper_from = crate::binarize::threshold_level(grey);
-    let open: Vec<BulgeTower> = wide
-        .into_iter()
-        .filter(|t| {
+    let open = towers.iter().filter(|t| {
+        wide_enough(t, curtain) && {
             let (mut n, mut paper) = (0usize, 0usize);
             for i in room(t, median).pixels(w, h) {
                 n += 1;
                 paper += usize::from(grey.as_raw()[i] >= paper_from);
             }
             n > 0 && paper as f64 >= OPEN_HEART * n as f64
-        })
-        .copied()
-        .collect();
-    carve_rooms(labels, w, h, &open, median);
+        }
+    });
+    carve_rooms(labels, w, h, open, median);
 }
 
 /// Whether any pixel of the tower's disc (its radius plus one) has the label.
