@@ -75,6 +75,10 @@ pub fn run(args: &FacadeArgs) -> Result<()> {
         outputs.add(op, png(&facade::draw::label_overlay(&img, &labels), op)?);
     }
     outputs.commit()?;
+    // What looks implausible is said; the outputs are written as found.
+    for w in facade::plausibility::check(&model, &training) {
+        eprintln!("{file}: warning: {w}");
+    }
     let windows: usize = model
         .facades
         .iter()

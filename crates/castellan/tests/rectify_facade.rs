@@ -90,7 +90,7 @@ fn facade_writes_the_model_labels_and_overlay() {
         dir.path().join("l.png"),
         dir.path().join("o.png"),
     );
-    castellan()
+    let assert = castellan()
         .arg("facade")
         .arg(&img_path)
         .arg("--training")
@@ -103,6 +103,9 @@ fn facade_writes_the_model_labels_and_overlay() {
         .arg(&ov)
         .assert()
         .success();
+    // A plausible model: nothing to warn about.
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    assert!(!stderr.contains("warning"), "{stderr}");
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     assert_eq!(m["width"], 120);
     let f = &m["facades"][0];
@@ -113,6 +116,46 @@ fn facade_writes_the_model_labels_and_overlay() {
     assert_eq!(l.get_pixel(20, 35)[0], 2);
     assert_eq!(l.get_pixel(60, 5)[0], 0);
     assert!(ov.exists());
+}
+
+#[test]
+fn facade_warns_when_the_windows_cover_most_of_the_facade() {
+    // Dark glass-coloured everywhere but a pale strip down the left edge, where the only wall
+    // box is: the map calls the façade window, and the model is said to be implausible while
+    // every file is still written.
+    let dir = tempfile::tempdir().unwrap();
+    let img_path = dir.path().join("dark.png");
+    let img = RgbImage::from_fn(120, 90, |x, y| {
+        let n = ((x * 7 + y * 13) % 5) as u8;
+        if x < 12 {
+            Rgb([200 + n, 180 + n, 150 + n])
+        } else {
+            Rgb([50 + n, 60 + n, 80 + n])
+        }
+    });
+    img.save(&img_path).unwrap();
+    let training = dir.path().join("t.json");
+    std::fs::write(
+        &training,
+        r#"{"classes": {"window": [[40, 30, 50, 40], [80, 50, 90, 60]], "wall": [[2, 20, 10, 70]]}}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("f.json");
+    let assert = castellan()
+        .arg("facade")
+        .arg(&img_path)
+        .arg("--training")
+        .arg(&training)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    assert!(
+        stderr.contains("warning: the windows cover") && stderr.contains("add wall boxes"),
+        "{stderr}"
+    );
+    assert!(out.exists());
 }
 
 #[test]

@@ -22,6 +22,8 @@
 //! - [`parse_photo`] ([`pipeline`]): classify → repeats → search in one call, the steps the
 //!   binaries share.
 //! - [`draw`]: the label overlay figure (background red, wall magenta, window green).
+//! - [`plausibility`]: warnings for a fitted model that looks wrong against the user's boxes
+//!   (windows over most of a façade, the user's windows outside the model's).
 //!
 //! ```
 //! use facade::classify::{classify, ClassifyParams, FeatureParams, Training};
@@ -61,6 +63,7 @@ pub mod gothic;
 pub mod grow;
 pub mod model;
 pub mod pipeline;
+pub mod plausibility;
 pub mod rectify;
 pub mod repeat;
 pub mod search;

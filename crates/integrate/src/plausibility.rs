@@ -70,6 +70,11 @@ pub enum Warning {
         share: f64,
         largest: String,
     },
+    /// A façade photo's model looks wrong (`facade::plausibility`).
+    Facade {
+        photo: String,
+        warning: facade::plausibility::FacadeWarning,
+    },
 }
 
 impl std::fmt::Display for Warning {
@@ -127,6 +132,10 @@ impl std::fmt::Display for Warning {
                 "{:.0} % of the model of {plan} are masses of wall that no fitted wall, tower or room explains (the largest {largest}): hachures, slopes or shading may have been read as wall — look at overlays/plan_walls.png and paint them \"not wall\" in `castellan serve`'s plan step",
                 100.0 * share
             ),
+            Warning::Facade { photo, warning } => write!(
+                f,
+                "façade photo {photo}: {warning} (in PROJECT.toml's [[facade]] training boxes, or in `castellan serve`'s façade step)"
+            ),
             Warning::ScaleBarNotFound { plan, metres } => write!(
                 f,
                 "scale_bar = {metres}: {} in plan = \"{plan}\" — give scale (metres per pixel) instead, or click the bar's two ends in `castellan serve`",
@@ -134,6 +143,22 @@ impl std::fmt::Display for Warning {
             ),
         }
     }
+}
+
+/// The checks on each façade photo's model against the user's boxes
+/// (`facade::plausibility::check`), in the rectified photo's frame where both live.
+pub fn facade_warnings(photos: &[crate::photo::FacadeEstimate]) -> Vec<Warning> {
+    photos
+        .iter()
+        .flat_map(|p| {
+            facade::plausibility::check(&p.model, &p.training)
+                .into_iter()
+                .map(|warning| Warning::Facade {
+                    photo: p.name.clone(),
+                    warning,
+                })
+        })
+        .collect()
 }
 
 /// The checks on the plan alone (what `castellan plan` can say too): no walls, a bar asked

@@ -318,6 +318,7 @@ pub fn reconstruct(
     warnings.extend(crate::plausibility::model_warnings(
         parsed, &estimate, &agreement,
     ));
+    warnings.extend(crate::plausibility::facade_warnings(&estimates));
     overlays.push(Overlay {
         name: "overlays/plan_model.png".into(),
         caption: Some(format!(
