@@ -178,9 +178,15 @@ pub async fn facade_stage(State(app): State<Arc<App>>, Path(name): Path<String>)
             .flat_map(|f| &f.floors)
             .map(|fl| fl.windows.len())
             .sum();
+        // What looks implausible (`facade::plausibility`), as `castellan facade` says it.
+        let warnings: Vec<String> = facade::plausibility::check(&e.model, &e.training)
+            .iter()
+            .map(ToString::to_string)
+            .collect();
         Ok(Json(json!({
             "overlay": file_url(&overlay), "facades": e.model.facades.len(),
             "floors": floors, "windows": windows, "ms": t.elapsed().as_millis(),
+            "warnings": warnings,
             // Where a correspondence's photo click may land (photo pixels, issue 22).
             "outlines": e.outlines_in_photo(),
         })))

@@ -417,6 +417,8 @@ async fn the_facade_stages_write_their_overlays() {
     assert_eq!(s, StatusCode::OK, "{f}");
     // The keep's south façade has 3 floors of 4 windows (examples/demo/TRUTH.json).
     assert!(f["windows"].as_u64().unwrap() >= 12, "{f}");
+    // A plausible model: the page has no warning to show (`facade::plausibility`).
+    assert_eq!(f["warnings"], serde_json::json!([]), "{f}");
     // One outline per façade, in the photo's pixels, holding the demo's own click (issue 22:
     // the page shows where a correspondence's photo point may land).
     let outlines = f["outlines"].as_array().unwrap();

@@ -596,7 +596,8 @@ $('facade-run').addEventListener('click', async () => {
   const name = state.facade;
   const r = await step('Façade search', () => api('POST', `/api/facades/${encodeURIComponent(name)}/facade`));
   if (!r) return;
-  $('facade-info').textContent = `${r.facades} façade(s), ${r.floors} floor(s), ${r.windows} window(s) in ${r.ms} ms`;
+  const warned = (r.warnings || []).length ? `; ${r.warnings.join('; ')}` : '';
+  $('facade-info').textContent = `${r.facades} façade(s), ${r.floors} floor(s), ${r.windows} window(s) in ${r.ms} ms${warned}`;
   state.outlines[name] = (r.outlines || []).filter(Boolean);
   drawCorrespondences();
   await showOverlay('facade-overlay', r.overlay);
