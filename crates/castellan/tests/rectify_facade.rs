@@ -5,9 +5,27 @@ mod fixtures;
 
 use assert_cmd::Command;
 use image::{Rgb, RgbImage};
+use std::path::Path;
 
 fn castellan() -> Command {
     Command::cargo_bin("castellan").unwrap()
+}
+
+/// `castellan facade IMAGE --training TRAINING -o OUT`, for more flags to be added.
+fn facade(image: &Path, training: &Path, out: &Path) -> Command {
+    let mut cmd = castellan();
+    cmd.arg("facade")
+        .arg(image)
+        .arg("--training")
+        .arg(training)
+        .arg("-o")
+        .arg(out);
+    cmd
+}
+
+/// The text a finished command wrote to stderr.
+fn stderr(a: &assert_cmd::assert::Assert) -> String {
+    String::from_utf8_lossy(&a.get_output().stderr).to_string()
 }
 
 #[test]
@@ -90,13 +108,7 @@ fn facade_writes_the_model_labels_and_overlay() {
         dir.path().join("l.png"),
         dir.path().join("o.png"),
     );
-    let assert = castellan()
-        .arg("facade")
-        .arg(&img_path)
-        .arg("--training")
-        .arg(&training)
-        .arg("-o")
-        .arg(&out)
+    let assert = facade(&img_path, &training, &out)
         .arg("--labels")
         .arg(&labels)
         .arg("--overlay")
@@ -104,8 +116,8 @@ fn facade_writes_the_model_labels_and_overlay() {
         .assert()
         .success();
     // A plausible model: nothing to warn about.
-    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
-    assert!(!stderr.contains("warning"), "{stderr}");
+    let said = stderr(&assert);
+    assert!(!said.contains("warning"), "{said}");
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     assert_eq!(m["width"], 120);
     let f = &m["facades"][0];
@@ -141,19 +153,10 @@ fn facade_warns_when_the_windows_cover_most_of_the_facade() {
     )
     .unwrap();
     let out = dir.path().join("f.json");
-    let assert = castellan()
-        .arg("facade")
-        .arg(&img_path)
-        .arg("--training")
-        .arg(&training)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .success();
-    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    let said = stderr(&facade(&img_path, &training, &out).assert().success());
     assert!(
-        stderr.contains("warning: the windows cover") && stderr.contains("add wall boxes"),
-        "{stderr}"
+        said.contains("warning: the windows cover") && said.contains("add wall boxes"),
+        "{said}"
     );
     assert!(out.exists());
 }
@@ -170,16 +173,7 @@ fn facade_rejects_boxes_outside_the_image() {
     )
     .unwrap();
     let out = dir.path().join("f.json");
-    let a = castellan()
-        .arg("facade")
-        .arg(&img_path)
-        .arg("--training")
-        .arg(&training)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .failure();
-    let err = String::from_utf8_lossy(&a.get_output().stderr).to_string();
+    let err = stderr(&facade(&img_path, &training, &out).assert().failure());
     assert!(
         err.contains("bad.json") && err.contains("no pixels inside"),
         "{err}"
@@ -202,15 +196,8 @@ fn facade_honours_the_users_corrections() {
     .unwrap();
     let windows = |fix: Option<&str>| {
         let (out, labels) = (dir.path().join("f.json"), dir.path().join("l.png"));
-        let mut cmd = castellan();
-        cmd.arg("facade")
-            .arg(&img_path)
-            .arg("--training")
-            .arg(&training)
-            .arg("-o")
-            .arg(&out)
-            .arg("--labels")
-            .arg(&labels);
+        let mut cmd = facade(&img_path, &training, &out);
+        cmd.arg("--labels").arg(&labels);
         if let Some(text) = fix {
             let path = dir.path().join("fix.json");
             std::fs::write(&path, text).unwrap();
