@@ -205,10 +205,17 @@ ELEVATIONS = [
 
 def run(args, cwd=None):
     """Runs castellan; returns (ok, seconds, the last line of stderr)."""
+    ok, secs, msg, _ = run_warned(args, cwd)
+    return ok, secs, msg
+
+
+def run_warned(args, cwd=None):
+    """`run`, and what the command warned of (the text after each `warning: `)."""
     t0 = time.perf_counter()
     p = subprocess.run([str(BIN), *map(str, args)], cwd=cwd, capture_output=True, text=True)
     lines = [l for l in p.stderr.splitlines() if l.strip() and not l.lstrip().startswith("[")]
-    return p.returncode == 0, time.perf_counter() - t0, (lines[-1] if lines else "")
+    warned = [l.split("warning: ", 1)[1] for l in lines if "warning: " in l]
+    return p.returncode == 0, time.perf_counter() - t0, (lines[-1] if lines else ""), warned
 
 
 def devset_towers():
@@ -300,12 +307,12 @@ def gallery_elevation(e, info, tmp):
     # The default classifier (filter bank + random forest) and the text's GMM (§3.1.3–3.1.4),
     # each with its probability map before the search, so the two can be judged side by side.
     for classifier, suffix in (("forest", ""), ("gmm", "_gmm")):
-        ok, secs, msg = run(["facade", src, "--training", training, "-o",
-                             tmp / f"{stem}{suffix}.facade.json", "--classifier", classifier,
-                             "--overlay", dst / f"facade{suffix}.png",
-                             "--probabilities", dst / f"pixels{suffix}.png"])
+        ok, secs, msg, warned = run_warned(
+            ["facade", src, "--training", training, "-o", tmp / f"{stem}{suffix}.facade.json",
+             "--classifier", classifier, "--overlay", dst / f"facade{suffix}.png",
+             "--probabilities", dst / f"pixels{suffix}.png"])
         row.update({f"facade{suffix}_ok": ok, f"facade{suffix}_secs": secs,
-                    f"facade{suffix}_msg": msg})
+                    f"facade{suffix}_msg": msg, f"facade{suffix}_warnings": warned})
         if ok:
             f = json.loads((tmp / f"{stem}{suffix}.facade.json").read_text())
             row[f"facades{suffix}"] = len(f["facades"])
@@ -395,8 +402,10 @@ def page(plans, elevations, elapsed):
         def fac_cell(suffix, name):
             if not r[f"facade{suffix}_ok"]:
                 return f"{name}: **failed**: {r[f'facade{suffix}_msg']}"
+            # What `castellan facade` doubts in its model (facade::plausibility, issue 21).
+            warned = "".join(f"<br>⚠ {w}" for w in r.get(f"facade{suffix}_warnings", []))
             return (f"{name}: {r[f'facades{suffix}']} façades, {r[f'floors{suffix}']} floors, "
-                    f"{r[f'windows{suffix}']} windows, {r[f'facade{suffix}_secs']:.1f} s")
+                    f"{r[f'windows{suffix}']} windows, {r[f'facade{suffix}_secs']:.1f} s{warned}")
         fac = fac_cell("", "forest") + "<br>" + fac_cell("_gmm", "GMM")
         got = (f"{r['elements']} elements, {r['groups']} groups, {r['gothic_secs']:.1f} s"
                if r["gothic_ok"] else f"**failed**: {r['gothic_msg']}")
