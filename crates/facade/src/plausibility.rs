@@ -92,11 +92,9 @@ pub fn check(model: &FacadeModel, training: &Training) -> Vec<FacadeWarning> {
             .flat_map(|fl| &fl.windows)
             .map(|w| (w[2] - w[0]).max(0.0) * (w[3] - w[1]).max(0.0))
             .sum();
-        if glass / (fw * fh) > MAX_WINDOW_SHARE {
-            out.push(FacadeWarning::WindowsCoverFacade {
-                facade: i,
-                share: glass / (fw * fh),
-            });
+        let share = glass / (fw * fh);
+        if share > MAX_WINDOW_SHARE {
+            out.push(FacadeWarning::WindowsCoverFacade { facade: i, share });
         }
     }
     let missed: Vec<[f64; 4]> = boxes
