@@ -21,7 +21,8 @@ use super::app::{
 
 /// The façade step on photo `index` of `p` (with its corrections): overlays written under out/
 /// (with `p` itself when `save`), and what the page draws its handles from — the façade tree in
-/// rectified pixels, the corrections, the overlay and the counts.
+/// rectified pixels, the corrections, the overlay, the counts and what looks implausible about
+/// the corrected model (`facade::plausibility`, as `castellan facade` says it).
 fn run(app: &App, p: &Project, index: usize, save: bool) -> Result<Value, ApiError> {
     let t = Instant::now();
     let (e, overlays) = pipeline::estimate_photo(p, index, &app.store, &app.options)
@@ -58,11 +59,16 @@ fn run(app: &App, p: &Project, index: usize, save: bool) -> Result<Value, ApiErr
         .iter()
         .map(|f| json!({ "bbox": f.bbox, "floors": f.floors }))
         .collect();
+    let warnings: Vec<String> = facade::plausibility::check(&e.model, &e.training)
+        .iter()
+        .map(ToString::to_string)
+        .collect();
     Ok(json!({
         "overlay": file_url(&overlay),
         "width": e.model.width, "height": e.model.height,
         "facades": facades, "floors": floors, "windows": windows,
         "fix": p.facades[index].fix,
+        "warnings": warnings,
         "ms": t.elapsed().as_millis(),
     }))
 }

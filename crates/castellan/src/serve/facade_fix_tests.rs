@@ -18,6 +18,33 @@ async fn corrections_are_run_then_saved_and_bad_ones_change_nothing() {
     let floors = tree["facades"][0]["floors"].as_array().unwrap();
     assert!(floors.len() >= 3, "{tree}");
     assert!(saved_project(dir.path()).facades[0].fix.is_empty());
+    // The demo's model is plausible: nothing to warn of.
+    assert_eq!(tree["warnings"], serde_json::json!([]), "{tree}");
+
+    // A window added over the whole façade: the corrected model is more glass than wall, and
+    // the answer says so (`facade::plausibility`); the correction is still saved.
+    let bbox: Vec<f64> = (0..4)
+        .map(|i| tree["facades"][0]["bbox"][i].as_f64().unwrap())
+        .collect();
+    let body = format!(
+        r#"{{"add_windows": [[{}, {}, {}, {}]]}}"#,
+        bbox[0], bbox[1], bbox[2], bbox[3]
+    );
+    let (s, r) = json(&app, "PUT", &format!("{NEAR}/fixes"), &body).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    let warnings = r["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{r}");
+    assert!(
+        warnings[0]
+            .as_str()
+            .unwrap()
+            .starts_with("the windows cover"),
+        "{r}"
+    );
+    assert_eq!(
+        saved_project(dir.path()).facades[0].fix.add_windows.len(),
+        1
+    );
 
     // Two floor lines, the ground floor blind.
     let lines = [

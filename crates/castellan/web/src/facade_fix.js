@@ -131,7 +131,8 @@ export function facadeFix(ctx) {
     const floors = f ? f.floors.length : 0;
     const windows = f ? f.floors.reduce((a, fl) => a + fl.windows.length, 0) : 0;
     Object.assign(info.dataset, { floors: String(floors), windows: String(windows), undo: String(history.length) });
-    info.textContent = `${floors} floors, ${windows} windows; ${Object.keys(answer.fix).length ? 'your corrections: ' + Object.keys(answer.fix).join(', ') : 'no corrections'}`;
+    const warned = (answer.warnings || []).length ? `; ${answer.warnings.join('; ')}` : '';
+    info.textContent = `${floors} floors, ${windows} windows; ${Object.keys(answer.fix).length ? 'your corrections: ' + Object.keys(answer.fix).join(', ') : 'no corrections'}${warned}`;
     canvas.dataset.fix = JSON.stringify(answer.fix);
     canvas.dataset.tree = JSON.stringify(answer.facades);
     draw();
