@@ -3,10 +3,13 @@
 //! `data/gothic_devset/annotations.json`, scored against the hand-drawn boxes.
 //!
 //! ```text
-//! cargo run --release -p facade --example gothic_devset [-- --hatching] [--without-issue-23] [--only SUBSTRING] [--dump DIR]
+//! cargo run --release -p facade --example gothic_devset [-- --hatching] [--no-verify] [--without-issue-23] [--only SUBSTRING] [--dump DIR]
 //! ```
 //!
 //! `--dump DIR` writes each estimate as GOTHIC.json (`DIR/NAME.json`) to look at.
+//! `--no-verify` leaves out the learned check of issue 23 (`facade::gothic::verify`), whose
+//! shipped forest was trained on these very images: with it the figures here are in-sample,
+//! and `--example gothic_verifier` gives them held out.
 //!
 //! The images are not in the repository: they are read from
 //! `../shared/data/castle_drawings_pd/` (relative to the workspace root). Prints a markdown
@@ -277,7 +280,11 @@ fn row(name: &str, kind: &str, s: &Score, secs: f64) -> String {
 /// `--training`), `--hatching` when asked; `--without-issue-23` starts from
 /// [`GothicParams::without_issue_23`](facade::gothic::GothicParams::without_issue_23) (the
 /// estimator before the enclosing-arch grid, repetition and slivers) for a same-run comparison.
-fn castellan_params(hatching: bool, before_issue_23: bool) -> facade::gothic::GothicParams {
+fn castellan_params(
+    hatching: bool,
+    before_issue_23: bool,
+    verify: bool,
+) -> facade::gothic::GothicParams {
     let min_radius = 8.0_f64;
     let base = if before_issue_23 {
         facade::gothic::GothicParams::without_issue_23()
@@ -289,6 +296,7 @@ fn castellan_params(hatching: bool, before_issue_23: bool) -> facade::gothic::Go
         min_width: 2.0 * min_radius,
         min_height: 3.0 * min_radius,
         hatching: hatching.then(facade::gothic::hatching_tone::HatchParams::default),
+        verify: verify && !before_issue_23,
         ..base
     }
 }
@@ -322,10 +330,19 @@ fn main() {
         std::process::exit(2);
     }
     let before = args.iter().any(|a| a == "--without-issue-23");
-    let params = castellan_params(hatching, before);
+    let verify = !args.iter().any(|a| a == "--no-verify");
+    let params = castellan_params(hatching, before, verify);
     println!(
-        "Gothic development set, `castellan gothic` defaults{}{}; IoU ≥ {IOU_MIN}\n",
+        "Gothic development set, `castellan gothic` defaults{}{}{}; IoU ≥ {IOU_MIN}\n",
         if hatching { " + --hatching" } else { "" },
+        if verify && !before {
+            " (the shipped verifier was trained on these images: for held-out figures run \
+             --example gothic_verifier)"
+        } else if !before {
+            " + --no-verify"
+        } else {
+            ""
+        },
         if before {
             ", without issue 23's departures"
         } else {

@@ -123,6 +123,7 @@ fn an_arch_only_the_hierarchy_made_is_picked_after_grouping() {
             .filter(|c| iou(&c.theta, &arch) < 0.5)
             .copied()
             .collect(),
+        image: d.image.clone(),
     };
     assert_eq!(without.found.len(), d.found.len() - 1);
     let params = GothicParams::default();

@@ -61,6 +61,7 @@ pub mod score;
 pub mod sliver;
 pub mod synth;
 pub mod synth_lancet;
+pub mod verify;
 pub mod watershed;
 
 use image::RgbImage;
@@ -121,12 +122,40 @@ pub fn estimate_with_progress(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<GothicEstimate> {
     let detection = detect_elements(img, params, progress)?;
-    Ok(organise_plain(
-        &detection.dt,
-        detection.found,
-        params,
-        progress,
-    ))
+    let est = organise_plain(&detection.dt, detection.found, params, progress);
+    Ok(checked(img, est, &[], params).0)
+}
+
+/// Issue 23: the elements the shipped verifier drops ([`verify`]) taken out when `params`
+/// asks for it, except the elements with ids in `kept_ids` (the user's); with each old id's
+/// new id.
+fn checked(
+    img: &RgbImage,
+    est: GothicEstimate,
+    kept_ids: &[usize],
+    params: &GothicParams,
+) -> (GothicEstimate, Vec<Option<usize>>) {
+    let same = |est: GothicEstimate| {
+        let ids = est.elements.iter().map(|e| Some(e.id)).collect();
+        (est, ids)
+    };
+    if !params.verify || est.elements.is_empty() {
+        return same(est);
+    }
+    let keep: Vec<bool> = verify::shipped()
+        .scores(img, &est)
+        .iter()
+        .zip(&est.elements)
+        .map(|(&s, e)| s >= verify::DEFAULT_THRESHOLD || kept_ids.contains(&e.id))
+        .collect();
+    let (kept, new_index) = verify::retain_mapped(&est, &keep);
+    let ids = est
+        .elements
+        .iter()
+        .zip(new_index)
+        .map(|(_, n)| n.map(|i| kept.elements[i].id))
+        .collect();
+    (kept, ids)
 }
 
 /// The slow half of §4.2 (edges, distance transform, every seed maximised), kept so the
@@ -135,6 +164,8 @@ pub fn estimate_with_progress(
 pub struct Detection {
     pub dt: DistanceMap,
     pub found: Vec<Candidate>,
+    /// The image detected on, for the learned check of the organised elements (issue 23).
+    pub image: RgbImage,
 }
 
 /// Edges, distance transform and detection (§4.2) of an image.
@@ -147,7 +178,11 @@ pub fn detect_elements(
     progress(Progress::Edges);
     let dt = distance_map(img, params);
     let found = detect::detect_with(&dt, params, progress);
-    Ok(Detection { dt, found })
+    Ok(Detection {
+        dt,
+        found,
+        image: img.clone(),
+    })
 }
 
 /// The estimate with the user's corrections (issue 22): applied to the detected elements,
@@ -163,7 +198,14 @@ pub fn estimate_corrected(
         corrections::apply(&detection.dt, detection.found.clone(), corrections, params)?;
     // Organising keeps the indices of the items it was given and appends enclosing arches;
     // `resolve` keeps the ids of what it applies in step with its deletions.
-    organise_with_progress(&detection.dt, corrected, params, progress)
+    let (est, mut applied) = organise_with_progress(&detection.dt, corrected, params, progress)?;
+    let users: Vec<usize> = applied.iter().filter_map(|a| a.element).collect();
+    let (est, new_id) = checked(&detection.image, est, &users, params);
+    // The user's elements all stay, so each applied correction keeps an element.
+    for a in &mut applied {
+        a.element = a.element.and_then(|id| new_id.get(id).copied().flatten());
+    }
+    Ok((est, applied))
 }
 
 /// Grouping, joint re-estimation and enclosing arches over detected elements, up to

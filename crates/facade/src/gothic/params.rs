@@ -71,6 +71,12 @@ pub struct GothicParams {
     /// ... and one narrower than this share of its parent's width. 0 and 0: every significant
     /// element is kept, as §4.2 does.
     pub sliver_of_parent: f64,
+    /// Issue 23, departure from §4.2 ([`verify`](super::verify)): the finished estimate's
+    /// elements are scored by the shipped verifier, a forest learned from the annotated
+    /// public-domain drawings and generated façades, and those below
+    /// [`verify::DEFAULT_THRESHOLD`](super::verify::DEFAULT_THRESHOLD) are dropped (never an
+    /// element the user corrected). `false`: every significant element is kept, as §4.2 does.
+    pub verify: bool,
 }
 
 impl Default for GothicParams {
@@ -99,13 +105,15 @@ impl Default for GothicParams {
             spacing_tolerance: 0.25,
             sliver_of_group: 0.5,
             sliver_of_parent: 0.15,
+            verify: true,
         }
     }
 }
 
 impl GothicParams {
     /// The defaults without issue 23's departures (the enclosing-arch grid, the rectangle and
-    /// disc starts, repetition, the joint fit from the best member, groups by head, slivers):
+    /// disc starts, repetition, the joint fit from the best member, groups by head, slivers,
+    /// the learned check):
     /// §4.2's grouping and enclosing proposals as they were
     /// before, for comparison.
     pub fn without_issue_23() -> GothicParams {
@@ -117,6 +125,7 @@ impl GothicParams {
             group_by_heads: false,
             sliver_of_group: 0.0,
             sliver_of_parent: 0.0,
+            verify: false,
             ..GothicParams::default()
         }
     }
