@@ -11,7 +11,7 @@ use facade::classify::{ClassifyParams, Training};
 use facade::gothic::classes::ClassMapParams;
 use facade::gothic::hatching_tone::HatchParams;
 use facade::gothic::masonry::{self, MasonryParams};
-use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
+use facade::gothic::{GothicEstimate, GothicParams, VsgOptions, verify};
 use image::{GrayImage, RgbImage};
 
 use crate::images::png;
@@ -22,7 +22,7 @@ pub fn run(args: &GothicArgs) -> Result<()> {
     let file = args.image.display().to_string();
     let img = read_rgb(&args.image)?;
     let started = Instant::now();
-    let est = estimate(args, &img).map_err(|e| anyhow!("{file}: {e:#}"))?;
+    let (est, dropped) = estimate(args, &img).map_err(|e| anyhow!("{file}: {e:#}"))?;
     let masonry = (args.masonry.is_some() || args.model.is_some())
         .then(|| masonry::segment(&img, &est, &MasonryParams::default()));
     let elapsed = started.elapsed();
@@ -54,15 +54,25 @@ pub fn run(args: &GothicArgs) -> Result<()> {
         outputs.add(path, block_model(args, &est, masonry.as_ref(), path)?);
     }
     outputs.commit()?;
+    // What the learned check took out (issue 23), so that an empty or sparse result is not
+    // mistaken for what the fit found.
+    let checked = if dropped > 0 {
+        format!(
+            "; the learned check dropped {dropped} of the {} element(s) the fit found as unlike openings (--no-verify keeps them)",
+            dropped + est.elements.len()
+        )
+    } else {
+        String::new()
+    };
     if est.elements.is_empty() {
         eprintln!(
-            "{file}: no arched or rectangular element found; written to {}",
+            "{file}: no arched or rectangular element found{checked}; written to {}",
             args.output.display()
         );
         return Ok(());
     }
     eprintln!(
-        "{file}: {} element(s) ({} nested), {} group(s){}; estimated in {:.0} ms, written to {}",
+        "{file}: {} element(s) ({} nested), {} group(s){}{checked}; estimated in {:.0} ms, written to {}",
         est.elements.len(),
         est.elements.iter().filter(|e| e.parent.is_some()).count(),
         est.groups.len(),
@@ -76,14 +86,16 @@ pub fn run(args: &GothicArgs) -> Result<()> {
 }
 
 /// Chapter 4 on the image: class-driven with `--training`, else from the edges, with a
-/// progress bar.
-fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
+/// progress bar; then the learned check unless `--no-verify` (issue 23). With the number of
+/// elements the check dropped.
+fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<(GothicEstimate, usize)> {
     let params = GothicParams {
         min_seed_radius: args.min_radius as f32,
         min_width: 2.0 * args.min_radius,
         min_height: 3.0 * args.min_radius,
         hatching: args.hatching.then(HatchParams::default),
-        verify: !args.no_verify && !args.text_grouping,
+        // Checked below, to say how many elements the check dropped.
+        verify: false,
         ..if args.text_grouping {
             GothicParams::without_issue_23()
         } else {
@@ -92,16 +104,19 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
     };
     if let Some(t) = &args.training {
         let training = read_training(t, img)?;
-        return Ok(facade::gothic::classes::estimate_with_classes(
-            img,
-            &training,
-            &params,
-            &ClassifyParams {
-                method: args.classifier,
-                ..Default::default()
-            },
-            &ClassMapParams::default(),
-        )?);
+        return Ok((
+            facade::gothic::classes::estimate_with_classes(
+                img,
+                &training,
+                &params,
+                &ClassifyParams {
+                    method: args.classifier,
+                    ..Default::default()
+                },
+                &ClassMapParams::default(),
+            )?,
+            0,
+        ));
     }
     let bar = crate::progress::bar(1);
     let show = |p: facade::gothic::Progress| match p {
@@ -126,7 +141,12 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<GothicEstimate> {
     };
     let est = facade::gothic::estimate_with_progress(img, &params, &show)?;
     bar.finish_and_clear();
-    Ok(est)
+    if args.no_verify || args.text_grouping {
+        return Ok((est, 0));
+    }
+    let kept = verify::verified(img, &est, verify::shipped(), verify::DEFAULT_THRESHOLD);
+    let dropped = est.elements.len() - kept.elements.len();
+    Ok((kept, dropped))
 }
 
 /// The block-level model (wall, elements, extruded stones) as binary glTF.

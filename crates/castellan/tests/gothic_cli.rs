@@ -139,3 +139,37 @@ fn unreadable_and_tiny_images_are_clear_errors_without_output() {
         .unwrap();
     fails_naming(&tiny, "too small");
 }
+
+/// Issue 23: the learned check says what it dropped, and `--no-verify` keeps it. On the bundled
+/// Coucy elevation (an engraving) the fit finds one element, a pointed arch over the roof's
+/// finial, and the check drops it.
+#[test]
+fn the_learned_check_says_what_it_dropped_and_no_verify_keeps_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let img = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/coucy/tower_elevation.png");
+    let count = |extra: &[&str]| {
+        let json = dir.path().join("g.json");
+        let out = castellan()
+            .arg("gothic")
+            .arg(&img)
+            .arg("-o")
+            .arg(&json)
+            .args(extra)
+            .assert()
+            .success();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+        let doc: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        (doc["elements"].as_array().unwrap().len(), stderr)
+    };
+    let (all, plain) = count(&["--no-verify"]);
+    let (kept, checked) = count(&[]);
+    assert_eq!((all, kept), (1, 0), "{plain}\n{checked}");
+    assert!(!plain.contains("learned check"), "{plain}");
+    assert!(
+        checked.contains("the learned check dropped 1 of the 1 element(s)")
+            && checked.contains("--no-verify keeps them"),
+        "{checked}"
+    );
+}
