@@ -1,5 +1,5 @@
 //! TRAINING.json from a ground-truth label file, drawn by the simulated user of `eval.rs`
-//! (three seeded 9-px boxes per class, seed 1, as `examples/evaluate.rs` uses), for measuring
+//! (three seeded 9-px boxes per class, seed 1, as `examples/evaluate/` uses), for measuring
 //! `castellan gothic --training` on CMP base and Paris Art-deco (docs/gothic.md).
 //!
 //! `cargo run --release -p facade --example gothic_training cmp|paris LABELS OUT.json`
@@ -10,7 +10,7 @@ use std::process::ExitCode;
 
 use facade::eval::{IGNORE, simulate_user};
 
-/// CMP palette → 0 background, 1 wall, 2 window (the mapping of `examples/evaluate.rs`).
+/// CMP palette → 0 background, 1 wall, 2 window (the mapping of `examples/evaluate/`).
 fn cmp_truth(path: &Path) -> Result<(Vec<u8>, usize, usize), String> {
     let img = image::open(path)
         .map_err(|e| format!("{}: {e}", path.display()))?
@@ -20,7 +20,7 @@ fn cmp_truth(path: &Path) -> Result<(Vec<u8>, usize, usize), String> {
 }
 
 /// Art-deco labels: Door 0, Shop 1, Balcony 2, Window 3, Wall 4, Sky 5, Roof 6, -1 void
-/// (the mapping of `examples/evaluate.rs`: windows are the window class).
+/// (the mapping of `examples/evaluate/`: windows are the window class).
 fn paris_truth(path: &Path) -> Result<(Vec<u8>, usize, usize), String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let rows: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty()).collect();

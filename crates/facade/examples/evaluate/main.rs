@@ -30,8 +30,11 @@
 //!   the forest's autocontext stage (`pixelclass::AutoContext`).
 //! - FACADE_DIAG=1: per-set diagnostics of the map and the tree.
 //! - FACADE_DUMP=dir: truth, map and tree label images per photo.
+//!
+//! Each set's line on stderr also says how many photos `facade::plausibility` warns of and
+//! their tree window IoU against the others' (docs/facade.md, "Plausibility warnings").
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use facade::classify::{Class, ClassifyParams, LogLikelihoods, Method, Training};
@@ -43,94 +46,8 @@ use facade::search::{SearchParams, parse};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn data() -> PathBuf {
-    match std::env::var("FACADE_DATA") {
-        Ok(d) => PathBuf::from(d),
-        Err(_) => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"),
-    }
-}
-
-/// CMP masks are palette PNGs; the image crate expands them to RGB, so map the palette back.
-fn cmp_truth(path: &Path) -> Option<Vec<u8>> {
-    let img = image::open(path).ok()?.to_rgb8();
-    Some(facade::eval::cmp_classes(&img))
-}
-
-/// Art-deco labels: Door 0, Shop 1, Balcony 2, Window 3, Wall 4, Sky 5, Roof 6, -1 void.
-fn artdeco_truth(path: &Path) -> Option<Vec<u8>> {
-    let text = std::fs::read_to_string(path).ok()?;
-    Some(
-        text.split_whitespace()
-            .map(|v| match v.parse::<i32>() {
-                Ok(3) => 2,
-                Ok(0 | 1 | 2 | 4) => 1,
-                Ok(5 | 6) => 0,
-                _ => IGNORE,
-            })
-            .collect(),
-    )
-}
-
-/// LabelMeFacade colours (RGB PNG, PROVENANCE.md): window 0:0:128 → window; building 128:0:0
-/// and door 128:128:0 → wall; sky, road, pavement, vegetation and car → background; "various"
-/// 0:0:0 and anything else is ignored.
-fn labelme_truth(path: &Path) -> Option<Vec<u8>> {
-    let img = image::open(path).ok()?.to_rgb8();
-    Some(
-        img.pixels()
-            .map(|p| match p.0 {
-                [0, 0, 128] => 2,
-                [128, 0, 0] | [128, 128, 0] => 1,
-                [0, 128, 128] | [128, 64, 0] | [128, 128, 128] | [0, 128, 0] | [128, 0, 128] => 0,
-                _ => IGNORE,
-            })
-            .collect(),
-    )
-}
-
-/// A LabelMeFacade photo (oblique) and its labels through the automatic rectification of
-/// §3.1.1, as `castellan reconstruct` rectifies a photo: the photo warped bilinearly and
-/// written to `dir` (for `run`), the labels carried nearest-neighbour, pixels from outside the
-/// photo ignored.
-fn rectified_labelme(
-    photo: &Path,
-    labels: &Path,
-    dir: &Path,
-) -> Result<(PathBuf, Vec<u8>), String> {
-    let img = image::open(photo).map_err(|e| e.to_string())?.to_rgb8();
-    let truth = labelme_truth(labels).ok_or("unreadable labels")?;
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    if truth.len() != w * h {
-        return Err("labels and photo differ in size".into());
-    }
-    let r = facade::rectify::rectify(&img, &facade::rectify::RectifyParams::default())
-        .map_err(|e| e.to_string())?;
-    let warped = r.warp(&img).map_err(|e| e.to_string())?;
-    let back = r.h.try_inverse().ok_or("singular homography")?;
-    let (rw, rh) = (r.width as usize, r.height as usize);
-    let mut out = vec![IGNORE; rw * rh];
-    for y in 0..rh {
-        for x in 0..rw {
-            let Some((u, v)) = facade::rectify::apply(&back, x as f64, y as f64) else {
-                continue;
-            };
-            let (u, v) = (u.round(), v.round());
-            // Black in the warp: beyond the photo or past its vanishing line.
-            if u >= 0.0
-                && v >= 0.0
-                && u < w as f64
-                && v < h as f64
-                && warped.get_pixel(x as u32, y as u32).0 != [0, 0, 0]
-            {
-                out[y * rw + x] = truth[v as usize * w + u as usize];
-            }
-        }
-    }
-    let stem = photo.file_stem().unwrap_or_default().to_string_lossy();
-    let path = dir.join(format!("{stem}.png"));
-    warped.save(&path).map_err(|e| e.to_string())?;
-    Ok((path, out))
-}
+mod truth;
+use truth::{artdeco_truth, cmp_truth, data, rectified_labelme};
 
 fn env_usize(name: &str, default: usize) -> usize {
     env_f64(name, default as f64) as usize
@@ -383,6 +300,9 @@ struct Sums {
     good: usize,
     true_windows: usize,
     grow: [f64; 5],
+    /// Photos whose model `facade::plausibility` warns of, and their tree window IoU summed.
+    warned: usize,
+    warned_iou: f64,
 }
 
 /// FACADE_DIAG: where the tree loses against the map.
@@ -563,6 +483,10 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.iou0 += i0;
         s.acc += a1;
         s.iou += i1;
+        if !facade::plausibility::check(&model, &training).is_empty() {
+            s.warned += 1;
+            s.warned_iou += i1;
+        }
         if std::env::var("FACADE_DIAG").is_ok() {
             diagnose(&mut s.diag, &ll, &truth, &pred);
             for f in &model.facades {
@@ -596,6 +520,16 @@ fn run(name: &str, items: Vec<(PathBuf, Vec<u8>)>) {
         s.acc / n,
         s.iou / n,
         s.secs / n
+    );
+    // Which photos `castellan facade` would warn of (`facade::plausibility`), and whether
+    // they are the bad ones: their tree window IoU against the others'.
+    let others = (s.n - s.warned).max(1) as f64;
+    eprintln!(
+        "{name}: {} of {} warned, tree window IoU {:.3} against {:.3}",
+        s.warned,
+        s.n,
+        s.warned_iou / s.warned.max(1) as f64,
+        (s.iou - s.warned_iou) / others
     );
     if s.proposals > 0 || repeat_params().evidence > 0.0 {
         eprintln!(
