@@ -11,6 +11,25 @@ fn castellan() -> Command {
     Command::cargo_bin("castellan").unwrap()
 }
 
+/// `castellan gothic IMG -o JSON EXTRA…`, which must succeed: GOTHIC.json and stderr.
+fn gothic(
+    img: &std::path::Path,
+    json: &std::path::Path,
+    extra: &[&str],
+) -> (serde_json::Value, String) {
+    let out = castellan()
+        .arg("gothic")
+        .arg(img)
+        .arg("-o")
+        .arg(json)
+        .args(extra)
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    let doc = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    (doc, stderr)
+}
+
 #[test]
 fn gothic_writes_json_masonry_overlay_and_model() {
     let dir = tempfile::tempdir().unwrap();
@@ -68,15 +87,7 @@ fn text_grouping_flag_gives_the_dissertations_organisation() {
     assert_eq!(spec.seed, 100);
     lancet_facade(&spec).image.save(&img).unwrap();
     let nested = |flag: Option<&str>| {
-        let json = dir.path().join("gothic.json");
-        let mut cmd = castellan();
-        cmd.arg("gothic").arg(&img).arg("-o").arg(&json);
-        if let Some(f) = flag {
-            cmd.arg(f);
-        }
-        cmd.assert().success();
-        let doc: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        let (doc, _) = gothic(&img, &dir.path().join("gothic.json"), flag.as_slice());
         let elements = doc["elements"].as_array().unwrap().clone();
         elements.iter().filter(|e| !e["parent"].is_null()).count()
     };
@@ -91,20 +102,11 @@ fn a_blank_wall_gives_an_empty_result() {
     RgbImage::from_pixel(64, 48, Rgb([180, 170, 160]))
         .save(&img)
         .unwrap();
-    let json = dir.path().join("g.json");
-    let out = castellan()
-        .arg("gothic")
-        .arg(&img)
-        .arg("-o")
-        .arg(&json)
-        .assert()
-        .success();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    let (doc, stderr) = gothic(&img, &dir.path().join("g.json"), &[]);
     assert!(
         stderr.contains("no arched or rectangular element"),
         "{stderr}"
     );
-    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     assert_eq!(doc["elements"].as_array().unwrap().len(), 0);
 }
 
@@ -149,18 +151,7 @@ fn the_learned_check_says_what_it_dropped_and_no_verify_keeps_it() {
     let img = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/coucy/tower_elevation.png");
     let count = |extra: &[&str]| {
-        let json = dir.path().join("g.json");
-        let out = castellan()
-            .arg("gothic")
-            .arg(&img)
-            .arg("-o")
-            .arg(&json)
-            .args(extra)
-            .assert()
-            .success();
-        let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
-        let doc: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        let (doc, stderr) = gothic(&img, &dir.path().join("g.json"), extra);
         (doc["elements"].as_array().unwrap().len(), stderr)
     };
     let (all, plain) = count(&["--no-verify"]);

@@ -4,7 +4,7 @@
 
 use axum::http::StatusCode;
 
-use super::tests::{app, demo_project, json, saved_project};
+use super::tests::{app, assert_one_warning, demo_project, json, saved_project};
 
 const NEAR: &str = "/api/facades/keep_south_near.png";
 
@@ -32,15 +32,7 @@ async fn corrections_are_run_then_saved_and_bad_ones_change_nothing() {
     );
     let (s, r) = json(&app, "PUT", &format!("{NEAR}/fixes"), &body).await;
     assert_eq!(s, StatusCode::OK, "{r}");
-    let warnings = r["warnings"].as_array().unwrap();
-    assert_eq!(warnings.len(), 1, "{r}");
-    assert!(
-        warnings[0]
-            .as_str()
-            .unwrap()
-            .starts_with("the windows cover"),
-        "{r}"
-    );
+    assert_one_warning(&r, "the windows cover");
     assert_eq!(
         saved_project(dir.path()).facades[0].fix.add_windows.len(),
         1
