@@ -38,6 +38,8 @@ fn gothic_corrections_are_checked_applied_and_saved() {
         synth.elements.len()
     );
     assert_eq!(first["detected_now"], true);
+    // The learned check keeps every element of a clean façade, and says so (issue 23).
+    assert_eq!(first["dropped"], 0);
     assert_eq!(first["offset"], json!([0.0, 0.0]));
     assert!(project().contains("rectified = true"));
     let saved = project();

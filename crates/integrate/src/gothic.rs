@@ -8,7 +8,7 @@
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::{
     Applied, CorrectionError, Detection, ElementCorrection, GothicEstimate, GothicParams,
-    VsgOptions, detect_elements, estimate_corrected, to_vsg,
+    Organised, VsgOptions, detect_elements, estimate_corrected, to_vsg,
 };
 use facade::rectify::{ManualLines, Rectification};
 use image::RgbImage;
@@ -84,12 +84,12 @@ pub fn detect(name: &str, cutout: &GothicCutout) -> Result<Detection, IntegrateE
 }
 
 /// The elements with the user's corrections (rectified photo pixels, moved into the cut-out
-/// whose corner is `origin`), grouped and nested.
+/// whose corner is `origin`), grouped, nested and checked.
 pub fn organise(
     detection: &Detection,
     corrections: &[ElementCorrection],
     origin: [f64; 2],
-) -> Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
+) -> Result<Organised, CorrectionError> {
     let moved: Vec<ElementCorrection> = corrections
         .iter()
         .map(|c| c.shifted(-origin[0], -origin[1]))
@@ -101,7 +101,9 @@ pub fn organise(
 pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
     let cutout = cut_out(photo)?;
     let detection = detect(photo.name, &cutout)?;
-    let (estimate, applied) = organise(
+    let Organised {
+        estimate, applied, ..
+    } = organise(
         &detection,
         photo.corrections,
         [cutout.bbox[0], cutout.bbox[1]],

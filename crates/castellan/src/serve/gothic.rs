@@ -11,7 +11,7 @@ use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::{HeaderMap, StatusCode};
 use facade::gothic::corrections::Handles;
-use facade::gothic::{Applied, Detection, ElementCorrection, GothicEstimate};
+use facade::gothic::{Applied, Detection, ElementCorrection, Organised};
 use integrate::gothic::{GothicCutout, GothicPhoto};
 use integrate::project::{GothicEntry, Project, gothic_element_entry};
 use integrate::textures::safe_stem;
@@ -153,17 +153,20 @@ fn run(
     let (cutout, detection, ran) = detected(app, g)?;
     let detect_ms = t.elapsed().as_millis();
     let origin = [cutout.bbox[0], cutout.bbox[1]];
-    let (est, applied): (GothicEstimate, Vec<Applied>) =
-        integrate::gothic::organise(&detection, corrections, origin).map_err(|e| {
-            ApiError(
-                StatusCode::UNPROCESSABLE_ENTITY,
-                format!(
-                    "{}: {}",
-                    gothic_element_entry(index, e.index, &g.image),
-                    e.problem
-                ),
-            )
-        })?;
+    let Organised {
+        estimate: est,
+        applied,
+        dropped,
+    } = integrate::gothic::organise(&detection, corrections, origin).map_err(|e| {
+        ApiError(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            format!(
+                "{}: {}",
+                gothic_element_entry(index, e.index, &g.image),
+                e.problem
+            ),
+        )
+    })?;
     let stem = safe_stem(&g.image);
     let facade_file = format!("out/{stem}_gothic_facade.png");
     let overlay_file = format!("out/overlays/{stem}_gothic.png");
@@ -190,6 +193,8 @@ fn run(
         "offset": origin, "width": est.width, "height": est.height,
         "elements": est.elements.iter().map(|e| element_json(e, origin, &applied)).collect::<Vec<_>>(),
         "groups": est.groups.len(),
+        // Elements the learned check took out as unlike openings (issue 23).
+        "dropped": dropped,
         "deleted": deleted,
         "corrections": corrections,
         "rectified": g.rectified,

@@ -178,8 +178,9 @@ export function setupGothic({ api, step, upload, refresh }) {
     state.offset = r.offset;
     if (!state.elements.some((e) => e.id === state.selected)) state.selected = null;
     const set = r.elements.filter((e) => e.correction !== null).length;
+    const dropped = r.dropped ? `; the learned check dropped ${r.dropped} more as unlike openings (add them back as elements if they are)` : '';
     info(`${r.elements.length} elements in ${r.groups} groups; ${r.corrections.length} corrections ` +
-      `(${set} set, ${r.deleted.length} deleted); ${r.ms} ms${r.detected_now ? '' : ' (detection kept)'}`);
+      `(${set} set, ${r.deleted.length} deleted); ${r.ms} ms${r.detected_now ? '' : ' (detection kept)'}${dropped}`);
     draw();
   }
 

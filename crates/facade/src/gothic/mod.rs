@@ -185,27 +185,41 @@ pub fn detect_elements(
     })
 }
 
+/// What [`estimate_corrected`] gives.
+#[derive(Debug, Clone)]
+pub struct Organised {
+    pub estimate: GothicEstimate,
+    /// What each correction did, with the element ids of `estimate`.
+    pub applied: Vec<Applied>,
+    /// Elements the learned check took out (issue 23; 0 when `params.verify` is off).
+    pub dropped: usize,
+}
+
 /// The estimate with the user's corrections (issue 22): applied to the detected elements,
-/// then grouping, enclosing arches and nesting as [`estimate`] does them; and what each
-/// correction did, with the element ids of the estimate.
+/// then grouping, enclosing arches, nesting and the learned check as [`estimate`] does them.
 pub fn estimate_corrected(
     detection: &Detection,
     corrections: &[ElementCorrection],
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
-) -> std::result::Result<(GothicEstimate, Vec<Applied>), CorrectionError> {
+) -> std::result::Result<Organised, CorrectionError> {
     let corrected =
         corrections::apply(&detection.dt, detection.found.clone(), corrections, params)?;
     // Organising keeps the indices of the items it was given and appends enclosing arches;
     // `resolve` keeps the ids of what it applies in step with its deletions.
     let (est, mut applied) = organise_with_progress(&detection.dt, corrected, params, progress)?;
     let users: Vec<usize> = applied.iter().filter_map(|a| a.element).collect();
+    let found = est.elements.len();
     let (est, new_id) = checked(&detection.image, est, &users, params);
     // The user's elements all stay, so each applied correction keeps an element.
     for a in &mut applied {
         a.element = a.element.and_then(|id| new_id.get(id).copied().flatten());
     }
-    Ok((est, applied))
+    Ok(Organised {
+        dropped: found - est.elements.len(),
+        estimate: est,
+        applied,
+    })
 }
 
 /// Grouping, joint re-estimation and enclosing arches over detected elements, up to
