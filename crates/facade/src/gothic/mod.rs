@@ -123,39 +123,7 @@ pub fn estimate_with_progress(
 ) -> Result<GothicEstimate> {
     let detection = detect_elements(img, params, progress)?;
     let est = organise_plain(&detection.dt, detection.found, params, progress);
-    Ok(checked(img, est, &[], params).0)
-}
-
-/// Issue 23: the elements the shipped verifier drops ([`verify`]) taken out when `params`
-/// asks for it, except the elements with ids in `kept_ids` (the user's); with each old id's
-/// new id.
-fn checked(
-    img: &RgbImage,
-    est: GothicEstimate,
-    kept_ids: &[usize],
-    params: &GothicParams,
-) -> (GothicEstimate, Vec<Option<usize>>) {
-    let same = |est: GothicEstimate| {
-        let ids = est.elements.iter().map(|e| Some(e.id)).collect();
-        (est, ids)
-    };
-    if !params.verify || est.elements.is_empty() {
-        return same(est);
-    }
-    let keep: Vec<bool> = verify::shipped()
-        .scores(img, &est)
-        .iter()
-        .zip(&est.elements)
-        .map(|(&s, e)| s >= verify::DEFAULT_THRESHOLD || kept_ids.contains(&e.id))
-        .collect();
-    let (kept, new_index) = verify::retain_mapped(&est, &keep);
-    let ids = est
-        .elements
-        .iter()
-        .zip(new_index)
-        .map(|(_, n)| n.map(|i| kept.elements[i].id))
-        .collect();
-    (kept, ids)
+    Ok(verify::checked(img, est, &[], params.verify).0)
 }
 
 /// The slow half of §4.2 (edges, distance transform, every seed maximised), kept so the
@@ -210,7 +178,7 @@ pub fn estimate_corrected(
     let (est, mut applied) = organise_with_progress(&detection.dt, corrected, params, progress)?;
     let users: Vec<usize> = applied.iter().filter_map(|a| a.element).collect();
     let found = est.elements.len();
-    let (est, new_id) = checked(&detection.image, est, &users, params);
+    let (est, new_id) = verify::checked(&detection.image, est, &users, params.verify);
     // The user's elements all stay, so each applied correction keeps an element.
     for a in &mut applied {
         a.element = a.element.and_then(|id| new_id.get(id).copied().flatten());

@@ -340,6 +340,28 @@ pub fn retain_mapped(est: &GothicEstimate, keep: &[bool]) -> (GothicEstimate, Ve
     )
 }
 
+/// The pipeline's check (`GothicParams::verify`): the elements the shipped verifier scores
+/// below [`DEFAULT_THRESHOLD`] taken out when `enabled`, except those with ids in `kept_ids`
+/// (the user's); with each old id's new id (ids are indices).
+pub(crate) fn checked(
+    img: &RgbImage,
+    est: GothicEstimate,
+    kept_ids: &[usize],
+    enabled: bool,
+) -> (GothicEstimate, Vec<Option<usize>>) {
+    if !enabled || est.elements.is_empty() {
+        let ids = (0..est.elements.len()).map(Some).collect();
+        return (est, ids);
+    }
+    let keep: Vec<bool> = shipped()
+        .scores(img, &est)
+        .iter()
+        .zip(&est.elements)
+        .map(|(&s, e)| s >= DEFAULT_THRESHOLD || kept_ids.contains(&e.id))
+        .collect();
+    retain_mapped(&est, &keep)
+}
+
 /// The estimate without the elements `verifier` scores below `threshold`. An enclosing arch
 /// is judged like any element: keeping the parents of kept elements as well was measured
 /// (docs/gothic.md) and gained one nested element for many wrong arches.
