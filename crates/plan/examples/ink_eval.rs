@@ -80,16 +80,6 @@ fn main() {
             train(&train_set, &params, "leave one out")
                 .unwrap_or_else(|e| ink_data::fail("training", e)),
         );
-        if let Ok(d) = std::env::var("SCRATCH_SAVE") {
-            std::fs::write(
-                format!(
-                    "{d}/{}.bin",
-                    source.split(',').next().unwrap().replace(' ', "_")
-                ),
-                model.to_bytes(),
-            )
-            .unwrap();
-        }
         let (mut learned, mut otsu) = ([0usize; 3], [0usize; 3]);
         for sh in &held {
             let (w, h) = sh.grey.dimensions();
