@@ -11,7 +11,7 @@ use facade::classify::{ClassifyParams, Training};
 use facade::gothic::classes::ClassMapParams;
 use facade::gothic::hatching_tone::HatchParams;
 use facade::gothic::masonry::{self, MasonryParams};
-use facade::gothic::{GothicEstimate, GothicParams, VsgOptions, verify};
+use facade::gothic::{GothicEstimate, GothicParams, VsgOptions};
 use image::{GrayImage, RgbImage};
 
 use crate::images::png;
@@ -94,8 +94,8 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<(GothicEstimate, usize)
         min_width: 2.0 * args.min_radius,
         min_height: 3.0 * args.min_radius,
         hatching: args.hatching.then(HatchParams::default),
-        // Checked below, to say how many elements the check dropped.
-        verify: false,
+        // `--text-grouping` is §4.2 as stated: without the check either.
+        verify: !args.no_verify && !args.text_grouping,
         ..if args.text_grouping {
             GothicParams::without_issue_23()
         } else {
@@ -139,14 +139,12 @@ fn estimate(args: &GothicArgs, img: &RgbImage) -> Result<(GothicEstimate, usize)
             ));
         }
     };
-    let est = facade::gothic::estimate_with_progress(img, &params, &show)?;
+    // The corrections' path with none: the same estimate as `estimate_with_progress`, with the
+    // count of what the learned check dropped.
+    let detection = facade::gothic::detect_elements(img, &params, &show)?;
+    let est = facade::gothic::estimate_corrected(&detection, &[], &params, &show)?;
     bar.finish_and_clear();
-    if args.no_verify || args.text_grouping {
-        return Ok((est, 0));
-    }
-    let kept = verify::verified(img, &est, verify::shipped(), verify::DEFAULT_THRESHOLD);
-    let dropped = est.elements.len() - kept.elements.len();
-    Ok((kept, dropped))
+    Ok((est.estimate, est.dropped))
 }
 
 /// The block-level model (wall, elements, extruded stones) as binary glTF.

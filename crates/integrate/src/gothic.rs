@@ -7,8 +7,8 @@
 
 use facade::gothic::masonry::{self, Masonry, MasonryParams};
 use facade::gothic::{
-    Applied, CorrectionError, Detection, ElementCorrection, GothicEstimate, GothicParams,
-    Organised, VsgOptions, detect_elements, estimate_corrected, to_vsg,
+    Applied, CorrectedEstimate, CorrectionError, Detection, ElementCorrection, GothicEstimate,
+    GothicParams, VsgOptions, detect_elements, estimate_corrected, to_vsg,
 };
 use facade::rectify::{ManualLines, Rectification};
 use image::RgbImage;
@@ -89,7 +89,7 @@ pub fn organise(
     detection: &Detection,
     corrections: &[ElementCorrection],
     origin: [f64; 2],
-) -> Result<Organised, CorrectionError> {
+) -> Result<CorrectedEstimate, CorrectionError> {
     let moved: Vec<ElementCorrection> = corrections
         .iter()
         .map(|c| c.shifted(-origin[0], -origin[1]))
@@ -101,7 +101,7 @@ pub fn organise(
 pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, IntegrateError> {
     let cutout = cut_out(photo)?;
     let detection = detect(photo.name, &cutout)?;
-    let Organised {
+    let CorrectedEstimate {
         estimate, applied, ..
     } = organise(
         &detection,

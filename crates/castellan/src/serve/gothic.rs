@@ -11,7 +11,7 @@ use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::{HeaderMap, StatusCode};
 use facade::gothic::corrections::Handles;
-use facade::gothic::{Applied, Detection, ElementCorrection, Organised};
+use facade::gothic::{Applied, CorrectedEstimate, Detection, ElementCorrection};
 use integrate::gothic::{GothicCutout, GothicPhoto};
 use integrate::project::{GothicEntry, Project, gothic_element_entry};
 use integrate::textures::safe_stem;
@@ -153,7 +153,7 @@ fn run(
     let (cutout, detection, ran) = detected(app, g)?;
     let detect_ms = t.elapsed().as_millis();
     let origin = [cutout.bbox[0], cutout.bbox[1]];
-    let Organised {
+    let CorrectedEstimate {
         estimate: est,
         applied,
         dropped,

@@ -155,7 +155,7 @@ pub fn detect_elements(
 
 /// What [`estimate_corrected`] gives.
 #[derive(Debug, Clone)]
-pub struct Organised {
+pub struct CorrectedEstimate {
     pub estimate: GothicEstimate,
     /// What each correction did, with the element ids of `estimate`.
     pub applied: Vec<Applied>,
@@ -170,7 +170,7 @@ pub fn estimate_corrected(
     corrections: &[ElementCorrection],
     params: &GothicParams,
     progress: &(dyn Fn(Progress) + Sync),
-) -> std::result::Result<Organised, CorrectionError> {
+) -> std::result::Result<CorrectedEstimate, CorrectionError> {
     let corrected =
         corrections::apply(&detection.dt, detection.found.clone(), corrections, params)?;
     // Organising keeps the indices of the items it was given and appends enclosing arches;
@@ -183,7 +183,7 @@ pub fn estimate_corrected(
     for a in &mut applied {
         a.element = a.element.and_then(|id| new_id.get(id).copied().flatten());
     }
-    Ok(Organised {
+    Ok(CorrectedEstimate {
         dropped: found - est.elements.len(),
         estimate: est,
         applied,
