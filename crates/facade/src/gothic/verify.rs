@@ -353,13 +353,21 @@ pub(crate) fn checked(
         let ids = (0..est.elements.len()).map(Some).collect();
         return (est, ids);
     }
-    let keep: Vec<bool> = shipped()
-        .scores(img, &est)
-        .iter()
+    let keep: Vec<bool> = passing(shipped(), img, &est, DEFAULT_THRESHOLD)
+        .into_iter()
         .zip(&est.elements)
-        .map(|(&s, e)| s >= DEFAULT_THRESHOLD || kept_ids.contains(&e.id))
+        .map(|(pass, e)| pass || kept_ids.contains(&e.id))
         .collect();
     retain_mapped(&est, &keep)
+}
+
+/// Whether each element scores at least `threshold`.
+fn passing(verifier: &Verifier, img: &RgbImage, est: &GothicEstimate, threshold: f32) -> Vec<bool> {
+    verifier
+        .scores(img, est)
+        .iter()
+        .map(|&s| s >= threshold)
+        .collect()
 }
 
 /// The estimate without the elements `verifier` scores below `threshold`. An enclosing arch
@@ -371,12 +379,7 @@ pub fn verified(
     verifier: &Verifier,
     threshold: f32,
 ) -> GothicEstimate {
-    let keep: Vec<bool> = verifier
-        .scores(img, est)
-        .iter()
-        .map(|&s| s >= threshold)
-        .collect();
-    retain(est, &keep)
+    retain(est, &passing(verifier, img, est, threshold))
 }
 
 #[cfg(test)]
