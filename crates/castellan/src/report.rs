@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use base64::Engine;
-use integrate::estimate::{Estimate, Footprint};
+use integrate::estimate::{Estimate, Footprint, MappedFacade};
 use integrate::pipeline::Reconstruction;
 use integrate::project::Project;
 
@@ -227,30 +227,7 @@ fn structures_table(h: &mut String, e: &Estimate) {
                 )
             }
         };
-        let facades: Vec<String> = s
-            .facades
-            .iter()
-            .map(|f| match &f.gothic {
-                Some(g) => format!(
-                    "{} → {}: Gothic, {} arches in {} groups, {} stones, s = {:.4}",
-                    esc(&f.image),
-                    f.side,
-                    g.elements,
-                    g.groups,
-                    g.stones,
-                    f.scale
-                ),
-                None => format!(
-                    "{} → {}: {} floors, {} windows/floor, s = {:.4}{}",
-                    esc(&f.image),
-                    f.side,
-                    f.floors.len(),
-                    f.windows.count,
-                    f.scale,
-                    if f.joint { ", joint" } else { "" }
-                ),
-            })
-            .collect();
+        let facades: Vec<String> = s.facades.iter().map(facade_line).collect();
         let prov: Vec<String> = s
             .provenance
             .iter()
@@ -276,6 +253,88 @@ fn structures_table(h: &mut String, e: &Estimate) {
             s.height,
             facades.join("<br>"),
             prov.join("<br>")
+        );
+    }
+}
+
+/// One mapped façade in the structures table: a Gothic one by its elements (and what the
+/// learned check dropped, issue 23), a rectangular one by its floors and windows.
+fn facade_line(f: &MappedFacade) -> String {
+    match &f.gothic {
+        Some(g) => format!(
+            "{} → {}: Gothic, {} arches in {} groups, {} stones{}, s = {:.4}",
+            esc(&f.image),
+            f.side,
+            g.elements,
+            g.groups,
+            g.stones,
+            if g.dropped > 0 {
+                format!(
+                    " (the learned check dropped {} more that the fit found, as unlike openings)",
+                    g.dropped
+                )
+            } else {
+                String::new()
+            },
+            f.scale
+        ),
+        None => format!(
+            "{} → {}: {} floors, {} windows/floor, s = {:.4}{}",
+            esc(&f.image),
+            f.side,
+            f.floors.len(),
+            f.windows.count,
+            f.scale,
+            if f.joint { ", joint" } else { "" }
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use integrate::estimate::{GothicMapped, Side, WindowColumns};
+
+    fn gothic_facade(dropped: usize) -> MappedFacade {
+        MappedFacade {
+            image: "north.png".into(),
+            side: Side::North,
+            arc: None,
+            scale: 0.05,
+            height_factor: 1.0,
+            width: 10.0,
+            height: 12.0,
+            floors: Vec::new(),
+            windows: WindowColumns {
+                count: 0,
+                offset: 0.0,
+                width: 0.0,
+                gap: 0.0,
+            },
+            joint: false,
+            bbox: [0.0, 0.0, 200.0, 240.0],
+            texture: None,
+            gothic: Some(GothicMapped {
+                program: "gothic_keep.vsg".into(),
+                alias: "keep".into(),
+                elements: 3,
+                groups: 1,
+                stones: 40,
+                dropped,
+            }),
+        }
+    }
+
+    #[test]
+    fn a_gothic_facade_line_says_what_the_learned_check_dropped() {
+        assert_eq!(
+            facade_line(&gothic_facade(2)),
+            "north.png → north: Gothic, 3 arches in 1 groups, 40 stones (the learned check \
+             dropped 2 more that the fit found, as unlike openings), s = 0.0500"
+        );
+        assert_eq!(
+            facade_line(&gothic_facade(0)),
+            "north.png → north: Gothic, 3 arches in 1 groups, 40 stones, s = 0.0500"
         );
     }
 }

@@ -268,6 +268,14 @@ pub struct GothicMapped {
     pub elements: usize,
     pub groups: usize,
     pub stones: usize,
+    /// Elements the fit found that the learned check dropped as unlike openings (issue 23;
+    /// `castellan gothic --no-verify` keeps them).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub dropped: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// One floor of a mapped façade, model units.

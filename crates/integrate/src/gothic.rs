@@ -53,6 +53,8 @@ pub struct GothicFacadeEstimate {
     pub masonry: Masonry,
     /// What each of the user's corrections did (element ids of `estimate`).
     pub applied: Vec<Applied>,
+    /// Elements the fit found that the learned check took out as unlike openings (issue 23).
+    pub dropped: usize,
 }
 
 /// §3.1.1 on one photo and the façade cut out of it.
@@ -102,7 +104,9 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
     let cutout = cut_out(photo)?;
     let detection = detect(photo.name, &cutout)?;
     let CorrectedEstimate {
-        estimate, applied, ..
+        estimate,
+        applied,
+        dropped,
     } = organise(
         &detection,
         photo.corrections,
@@ -122,6 +126,7 @@ pub fn estimate_gothic(photo: &GothicPhoto) -> Result<GothicFacadeEstimate, Inte
         estimate,
         masonry,
         applied,
+        dropped,
     })
 }
 

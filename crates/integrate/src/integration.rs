@@ -398,6 +398,7 @@ fn map_gothic(
             elements: est.estimate.elements.len(),
             groups: est.estimate.groups.len(),
             stones: est.masonry.stones.len(),
+            dropped: est.dropped,
         }),
     };
     let k = structure.facades.len();

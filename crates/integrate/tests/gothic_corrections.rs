@@ -165,3 +165,41 @@ fn a_correction_that_cannot_apply_names_its_entry() {
         "{e}"
     );
 }
+
+/// Issue 23: what the learned check drops reaches estimate.json and the overlay's caption. The
+/// bundled Coucy elevation (an engraving) as the keep's Gothic photo: the fit finds one
+/// element, an arch over the roof's finial, and the check drops it (as
+/// `facade/tests/gothic_corrections.rs` finds on the image alone).
+#[test]
+fn what_the_learned_check_drops_is_counted_in_the_estimate() {
+    let (mut p, mut files, _) = project("");
+    let elevation = std::fs::read(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/coucy/tower_elevation.png"),
+    )
+    .unwrap();
+    files.0.insert("gothic.png".to_string(), elevation);
+    p.correspondences[0].facade_point = [116.0, 330.0];
+    let (gothic, overlays) = pipeline::estimate_gothic_photo(&p, 0, &files).unwrap();
+    assert_eq!((gothic.estimate.elements.len(), gothic.dropped), (0, 1));
+    let caption = overlays
+        .iter()
+        .find(|o| o.name.ends_with("_gothic.png"))
+        .and_then(|o| o.caption.clone())
+        .unwrap();
+    assert!(
+        caption.contains("the learned check dropped 1 element(s)"),
+        "{caption}"
+    );
+    let r = pipeline::reconstruct(&p, &files, &pipeline::Options::default(), &|_| {}).unwrap();
+    let g = r
+        .estimate
+        .structures
+        .iter()
+        .flat_map(|s| s.facades.iter())
+        .find_map(|f| f.gothic.as_ref())
+        .expect("the Gothic façade is mapped");
+    assert_eq!((g.elements, g.dropped), (0, 1));
+    let json = serde_json::to_value(g).unwrap();
+    assert_eq!(json["dropped"], 1);
+}

@@ -156,8 +156,16 @@ pub fn estimate_gothic_photo(
     overlays.push(Overlay {
         name: format!("overlays/{stem}_gothic.png"),
         caption: Some(format!(
-            "{}: arches, groups, nesting and stones (ch. 4) — {}",
+            "{}: arches, groups, nesting and stones (ch. 4){} — {}",
             estimate.name,
+            if estimate.dropped > 0 {
+                format!(
+                    "; the learned check dropped {} element(s) the fit found, not drawn",
+                    estimate.dropped
+                )
+            } else {
+                String::new()
+            },
             facade::gothic::draw::LEGEND
         )),
         picture: Picture::Rgb(facade::gothic::draw::overlay(
