@@ -174,6 +174,9 @@ pub struct Score {
     pub nested: usize,
     /// Of those, the ones whose prediction's parent is the match of their parent.
     pub nested_right: usize,
+    /// Ground truth that counts and that no prediction overlaps at all: missed by the
+    /// candidates, not by the matching's IoU.
+    pub untouched: usize,
 }
 
 impl Score {
@@ -184,6 +187,7 @@ impl Score {
         self.matched += o.matched;
         self.nested += o.nested;
         self.nested_right += o.nested_right;
+        self.untouched += o.untouched;
     }
     pub fn recall(&self) -> Option<f64> {
         (self.gt > 0).then(|| self.matched as f64 / self.gt as f64)
@@ -219,6 +223,10 @@ pub fn score(gt: &[GtElement], pred: &[Predicted]) -> Score {
     let mut s = Score {
         gt: gt.iter().filter(|e| !e.difficult).count(),
         pred: pred.len(),
+        untouched: gt
+            .iter()
+            .filter(|e| !e.difficult && pred_boxes.iter().all(|&p| iou(e.bbox, p) == 0.0))
+            .count(),
         ..Score::default()
     };
     for g in gt_of_pred.iter().flatten() {
@@ -417,6 +425,11 @@ fn main() {
             &all,
             secs_tot[0] + secs_tot[1]
         )
+    );
+    println!(
+        "\n{} of the {} counted elements overlap no estimated element at all (the candidates \
+         missed them; the rest of the unmatched overlap one below IoU {IOU_MIN}).",
+        all.untouched, all.gt
     );
     println!(
         "\nGT: annotated elements that count (not difficult); recall = matched GT / GT; \

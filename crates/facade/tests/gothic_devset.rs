@@ -175,12 +175,14 @@ fn recall_precision_known_answer() {
     ];
     let s = score(&g, &p);
     assert_eq!((s.gt, s.pred, s.pred_on_difficult, s.matched), (3, 4, 1, 2));
+    // The third counted box meets no prediction; the first two are overlapped.
+    assert_eq!(s.untouched, 1);
     assert!((s.recall().unwrap() - 2.0 / 3.0).abs() < 1e-12);
     assert!((s.precision().unwrap() - 2.0 / 3.0).abs() < 1e-12);
     assert_eq!(s.nesting(), None);
     // Nothing predicted: recall 0, precision undefined.
     let s = score(&g, &[]);
-    assert_eq!(s.recall(), Some(0.0));
+    assert_eq!((s.recall(), s.untouched), (Some(0.0), 3));
     assert_eq!(s.precision(), None);
 }
 
