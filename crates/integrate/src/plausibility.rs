@@ -64,6 +64,15 @@ pub enum Warning {
     },
     /// `scale_bar` was given but no bar was found: the model is in plan pixels.
     ScaleBarNotFound { plan: String, metres: f64 },
+    /// Groups of tower-wall edges too long to be one tower (`plan::tower_groups::long_groups`):
+    /// the towers along them are miscounted. Not said once the user has corrected towers.
+    TowerWallsTooLong {
+        plan: String,
+        groups: usize,
+        /// The longest group's extent in its wall's thicknesses, and its centre (plan pixels).
+        thicknesses: f64,
+        centre: [f64; 2],
+    },
     /// Masses of wall take more than [`MAX_MASS_SHARE`] of the model's footprint.
     MassesOfWall {
         plan: String,
@@ -136,6 +145,16 @@ impl std::fmt::Display for Warning {
                 f,
                 "façade photo {photo}: {warning} (in PROJECT.toml's [[facade]] training boxes, or in `castellan serve`'s façade step)"
             ),
+            Warning::TowerWallsTooLong {
+                plan,
+                groups,
+                thicknesses,
+                centre,
+            } => write!(
+                f,
+                "{groups} tower wall(s) of {plan} too long to be one tower (the longest {thicknesses:.0} wall thicknesses across, centred at ({:.0}, {:.0})): likely a stretch of curving curtain read as one tower, so the towers along it are miscounted; look at overlays/plan_labels.png and correct the towers ([[tower]] in PROJECT.toml, or `castellan serve`'s plan step)",
+                centre[0], centre[1]
+            ),
             Warning::ScaleBarNotFound { plan, metres } => write!(
                 f,
                 "scale_bar = {metres}: {} in plan = \"{plan}\" — give scale (metres per pixel) instead, or click the bar's two ends in `castellan serve`",
@@ -162,13 +181,15 @@ pub fn facade_warnings(photos: &[crate::photo::FacadeEstimate]) -> Vec<Warning> 
 }
 
 /// The checks on the plan alone (what `castellan plan` can say too): no walls, a bar asked
-/// for and not found, a castle of implausible size at the scale given or read.
+/// for and not found, a castle of implausible size at the scale given or read, tower walls too
+/// long to be one tower (unless `towers_corrected`: the user has looked at the towers).
 pub fn plan_warnings(
     plan: &ParsedPlan,
     plan_image: &str,
     scale_note: &ScaleNote,
     units: Units,
     units_per_pixel: f64,
+    towers_corrected: bool,
 ) -> Vec<Warning> {
     let name = || plan_image.to_string();
     let mut out = Vec::new();
@@ -181,6 +202,19 @@ pub fn plan_warnings(
     if plan.edges.is_empty() {
         out.push(Warning::NoWalls { plan: name() });
         return out;
+    }
+    let long = plan::tower_groups::long_groups(&plan.edges, plan.vertices.len());
+    if let (false, Some(longest)) = (
+        towers_corrected,
+        long.iter()
+            .max_by(|a, b| a.thicknesses.total_cmp(&b.thicknesses)),
+    ) {
+        out.push(Warning::TowerWallsTooLong {
+            plan: name(),
+            groups: long.len(),
+            thicknesses: longest.thicknesses,
+            centre: longest.centre,
+        });
     }
     if units == Units::Metres
         && let Some(pixels) = built_extent(plan)
@@ -465,7 +499,14 @@ mod tests {
     #[test]
     fn a_plan_without_walls_warns_once_and_names_the_drawing() {
         let p = plan(0, [0, 0, 0, 0]);
-        let w = plan_warnings(&p, "rochester.png", &ScaleNote::Given, Units::Metres, 0.5);
+        let w = plan_warnings(
+            &p,
+            "rochester.png",
+            &ScaleNote::Given,
+            Units::Metres,
+            0.5,
+            false,
+        );
         assert_eq!(
             w,
             vec![Warning::NoWalls {
@@ -606,7 +647,7 @@ mod tests {
     fn a_scale_making_the_castle_a_toy_or_a_city_warns_and_pixels_do_not() {
         // Built area 50 px across.
         let p = plan(4, [10, 10, 60, 40]);
-        let check = |units, s| plan_warnings(&p, "plan.png", &ScaleNote::Given, units, s);
+        let check = |units, s| plan_warnings(&p, "plan.png", &ScaleNote::Given, units, s, false);
         assert!(check(Units::Metres, 0.2).is_empty()); // 10 m
         assert!(check(Units::Metres, 40.0).is_empty()); // 2 km
         assert_eq!(
@@ -624,13 +665,61 @@ mod tests {
     }
 
     #[test]
+    fn tower_walls_too_long_for_one_tower_warn_until_the_user_corrects_towers() {
+        // One group of two tower-wall edges 3 px thick, 60 px across: 20 thicknesses.
+        let mut p = plan(0, [10, 10, 60, 40]);
+        p.vertices = vec![plan::graph::Vertex { x: 0.0, y: 0.0 }; 3];
+        let wall = |from, to, xs: std::ops::Range<u32>| plan::PlanEdge {
+            from,
+            to,
+            label: Label::TowerWall,
+            points: xs.map(|x| (x, 20)).collect(),
+            fit: None,
+            thickness: 3.0,
+        };
+        p.edges = vec![wall(0, 1, 10..41), wall(1, 2, 40..71)];
+        let check = |p: &ParsedPlan, corrected| {
+            plan_warnings(
+                p,
+                "plan.png",
+                &ScaleNote::Given,
+                Units::Pixels,
+                1.0,
+                corrected,
+            )
+        };
+        let w = check(&p, false);
+        assert_eq!(
+            w,
+            vec![Warning::TowerWallsTooLong {
+                plan: "plan.png".into(),
+                groups: 1,
+                thicknesses: 20.0,
+                centre: [40.0, 20.0]
+            }]
+        );
+        assert!(
+            w[0].to_string().starts_with(
+                "1 tower wall(s) of plan.png too long to be one tower (the longest 20 wall \
+                 thicknesses across, centred at (40, 20))"
+            ),
+            "{}",
+            w[0]
+        );
+        assert!(check(&p, true).is_empty());
+        // As one tower's size (9 thicknesses across) it is no warning.
+        p.edges = vec![wall(0, 1, 10..24), wall(1, 2, 23..38)];
+        assert!(check(&p, false).is_empty());
+    }
+
+    #[test]
     fn a_scale_bar_not_found_warns_with_the_way_out() {
         let p = plan(4, [10, 10, 60, 40]);
         let note = ScaleNote::BarNotFound {
             metres: 30.0,
             assumed: "1 m = 2 px".into(),
         };
-        let w = plan_warnings(&p, "plan.png", &note, Units::Pixels, 1.0);
+        let w = plan_warnings(&p, "plan.png", &note, Units::Pixels, 1.0, false);
         assert_eq!(
             w,
             vec![Warning::ScaleBarNotFound {

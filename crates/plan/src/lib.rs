@@ -73,6 +73,7 @@ pub mod synth;
 pub mod synth_styles;
 pub mod thick_towers;
 pub mod thin;
+pub mod tower_groups;
 mod union_find;
 
 use image::DynamicImage;
@@ -260,6 +261,10 @@ pub fn parse(image: &DynamicImage, opts: &Options) -> Result<ParsedPlan, PlanErr
         )
     };
     let mut parsed = parsed;
+    // In the drawing's pixels, once the parse is mapped back to them.
+    parsed
+        .warnings
+        .extend(tower_groups::warning(&parsed.edges, parsed.vertices.len()));
     // The map at even odds is made only for the trim, and only by a learned ink.
     if let Some(even_odds) = &even_odds {
         parsed.pre.trimmed_pixels =
@@ -278,25 +283,6 @@ fn chain_with_ends(g: &graph::Graph, e: &graph::Edge) -> Vec<[f64; 2]> {
     pts.extend(e.points.iter().map(|p| [p.0 as f64, p.1 as f64]));
     pts.push(v(e.to));
     pts
-}
-
-/// Towers: groups of tower-wall edges joined at shared vertices. Departure from counting
-/// tower-wall edges one by one: on real drawings a tower's wall is often split into several
-/// edges by the walls meeting it (Coucy: 5 towers, 18 tower-wall edges), so the edge count
-/// overstates the towers (docs/plan.md, development set).
-pub(crate) fn count_towers(edges: &[PlanEdge], vertices: usize) -> usize {
-    let mut sets = union_find::UnionFind::new(vertices);
-    let towers: Vec<&PlanEdge> = edges
-        .iter()
-        .filter(|e| e.label == Label::TowerWall)
-        .collect();
-    for e in &towers {
-        sets.union(e.from, e.to);
-    }
-    let mut roots: Vec<usize> = towers.iter().map(|e| sets.root(e.from)).collect();
-    roots.sort_unstable();
-    roots.dedup();
-    roots.len()
 }
 
 /// The learned wall ink of a drawing, as chapter 5 and the trim take it.
@@ -562,7 +548,7 @@ fn parse_grey(
     }
     bulges::drop_nested(&mut bulge_towers);
     laps.lap("thick towers");
-    let towers = count_towers(&edges, g.vertices.len()) + bulge_towers.len();
+    let towers = tower_groups::groups(&edges, g.vertices.len()).len() + bulge_towers.len();
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {
         warnings.push("no towers found on the outer wall".into());
     }
