@@ -293,36 +293,17 @@ fn facade_line(f: &MappedFacade) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use integrate::estimate::{GothicMapped, Side, WindowColumns};
 
     fn gothic_facade(dropped: usize) -> MappedFacade {
-        MappedFacade {
-            image: "north.png".into(),
-            side: Side::North,
-            arc: None,
-            scale: 0.05,
-            height_factor: 1.0,
-            width: 10.0,
-            height: 12.0,
-            floors: Vec::new(),
-            windows: WindowColumns {
-                count: 0,
-                offset: 0.0,
-                width: 0.0,
-                gap: 0.0,
-            },
-            joint: false,
-            bbox: [0.0, 0.0, 200.0, 240.0],
-            texture: None,
-            gothic: Some(GothicMapped {
-                program: "gothic_keep.vsg".into(),
-                alias: "keep".into(),
-                elements: 3,
-                groups: 1,
-                stones: 40,
-                dropped,
-            }),
-        }
+        serde_json::from_value(serde_json::json!({
+            "image": "north.png", "side": "north", "scale": 0.05, "height_factor": 1.0,
+            "width": 10.0, "height": 12.0, "floors": [], "joint": false,
+            "windows": {"count": 0, "offset": 0.0, "width": 0.0, "gap": 0.0},
+            "bbox": [0.0, 0.0, 200.0, 240.0],
+            "gothic": {"program": "gothic_keep.vsg", "alias": "keep", "elements": 3,
+                       "groups": 1, "stones": 40, "dropped": dropped}
+        }))
+        .unwrap()
     }
 
     #[test]
