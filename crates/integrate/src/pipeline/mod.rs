@@ -314,7 +314,6 @@ pub fn reconstruct(
         &integrated.scale_note,
         units,
         per_pixel,
-        !project.tower_fixes.is_empty(),
     );
     warnings.extend(crate::plausibility::model_warnings(
         parsed, &estimate, &agreement,

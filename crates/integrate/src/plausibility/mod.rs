@@ -64,15 +64,6 @@ pub enum Warning {
     },
     /// `scale_bar` was given but no bar was found: the model is in plan pixels.
     ScaleBarNotFound { plan: String, metres: f64 },
-    /// Groups of tower-wall edges too long to be one tower (`plan::tower_groups::long_groups`):
-    /// the towers along them are miscounted. Not said once the user has corrected towers.
-    TowerWallsTooLong {
-        plan: String,
-        groups: usize,
-        /// The longest group's extent in its wall's thicknesses, and its centre (plan pixels).
-        thicknesses: f64,
-        centre: [f64; 2],
-    },
     /// Masses of wall take more than [`MAX_MASS_SHARE`] of the model's footprint.
     MassesOfWall {
         plan: String,
@@ -145,16 +136,6 @@ impl std::fmt::Display for Warning {
                 f,
                 "façade photo {photo}: {warning} (in PROJECT.toml's [[facade]] training boxes, or in `castellan serve`'s façade step)"
             ),
-            Warning::TowerWallsTooLong {
-                plan,
-                groups,
-                thicknesses,
-                centre,
-            } => write!(
-                f,
-                "{groups} tower wall(s) of {plan} too long to be one tower (the longest {thicknesses:.0} wall thicknesses across, centred at ({:.0}, {:.0})): likely a stretch of curving curtain read as one tower, so the towers along it are miscounted; look at overlays/plan_labels.png and correct the towers ([[tower]] in PROJECT.toml, or `castellan serve`'s plan step)",
-                centre[0], centre[1]
-            ),
             Warning::ScaleBarNotFound { plan, metres } => write!(
                 f,
                 "scale_bar = {metres}: {} in plan = \"{plan}\" — give scale (metres per pixel) instead, or click the bar's two ends in `castellan serve`",
@@ -181,15 +162,13 @@ pub fn facade_warnings(photos: &[crate::photo::FacadeEstimate]) -> Vec<Warning> 
 }
 
 /// The checks on the plan alone (what `castellan plan` can say too): no walls, a bar asked
-/// for and not found, a castle of implausible size at the scale given or read, tower walls too
-/// long to be one tower (unless `towers_corrected`: the user has looked at the towers).
+/// for and not found, a castle of implausible size at the scale given or read.
 pub fn plan_warnings(
     plan: &ParsedPlan,
     plan_image: &str,
     scale_note: &ScaleNote,
     units: Units,
     units_per_pixel: f64,
-    towers_corrected: bool,
 ) -> Vec<Warning> {
     let name = || plan_image.to_string();
     let mut out = Vec::new();
@@ -202,19 +181,6 @@ pub fn plan_warnings(
     if plan.edges.is_empty() {
         out.push(Warning::NoWalls { plan: name() });
         return out;
-    }
-    let long = plan::tower_groups::long_groups(&plan.edges, plan.vertices.len());
-    if let (false, Some(longest)) = (
-        towers_corrected,
-        long.iter()
-            .max_by(|a, b| a.thicknesses.total_cmp(&b.thicknesses)),
-    ) {
-        out.push(Warning::TowerWallsTooLong {
-            plan: name(),
-            groups: long.len(),
-            thicknesses: longest.thicknesses,
-            centre: longest.centre,
-        });
     }
     if units == Units::Metres
         && let Some(pixels) = built_extent(plan)

@@ -121,14 +121,7 @@ fn castle(tower_height: f64) -> Vec<Structure> {
 #[test]
 fn a_plan_without_walls_warns_once_and_names_the_drawing() {
     let p = plan(0, [0, 0, 0, 0]);
-    let w = plan_warnings(
-        &p,
-        "rochester.png",
-        &ScaleNote::Given,
-        Units::Metres,
-        0.5,
-        false,
-    );
+    let w = plan_warnings(&p, "rochester.png", &ScaleNote::Given, Units::Metres, 0.5);
     assert_eq!(
         w,
         vec![Warning::NoWalls {
@@ -269,7 +262,7 @@ fn a_facade_three_times_the_tallest_around_warns_on_a_wide_structure() {
 fn a_scale_making_the_castle_a_toy_or_a_city_warns_and_pixels_do_not() {
     // Built area 50 px across.
     let p = plan(4, [10, 10, 60, 40]);
-    let check = |units, s| plan_warnings(&p, "plan.png", &ScaleNote::Given, units, s, false);
+    let check = |units, s| plan_warnings(&p, "plan.png", &ScaleNote::Given, units, s);
     assert!(check(Units::Metres, 0.2).is_empty()); // 10 m
     assert!(check(Units::Metres, 40.0).is_empty()); // 2 km
     assert_eq!(
@@ -287,61 +280,13 @@ fn a_scale_making_the_castle_a_toy_or_a_city_warns_and_pixels_do_not() {
 }
 
 #[test]
-fn tower_walls_too_long_for_one_tower_warn_until_the_user_corrects_towers() {
-    // One group of two tower-wall edges 3 px thick, 60 px across: 20 thicknesses.
-    let mut p = plan(0, [10, 10, 60, 40]);
-    p.vertices = vec![plan::graph::Vertex { x: 0.0, y: 0.0 }; 3];
-    let wall = |from, to, xs: std::ops::Range<u32>| plan::PlanEdge {
-        from,
-        to,
-        label: Label::TowerWall,
-        points: xs.map(|x| (x, 20)).collect(),
-        fit: None,
-        thickness: 3.0,
-    };
-    p.edges = vec![wall(0, 1, 10..41), wall(1, 2, 40..71)];
-    let check = |p: &ParsedPlan, corrected| {
-        plan_warnings(
-            p,
-            "plan.png",
-            &ScaleNote::Given,
-            Units::Pixels,
-            1.0,
-            corrected,
-        )
-    };
-    let w = check(&p, false);
-    assert_eq!(
-        w,
-        vec![Warning::TowerWallsTooLong {
-            plan: "plan.png".into(),
-            groups: 1,
-            thicknesses: 20.0,
-            centre: [40.0, 20.0]
-        }]
-    );
-    assert!(
-        w[0].to_string().starts_with(
-            "1 tower wall(s) of plan.png too long to be one tower (the longest 20 wall \
-             thicknesses across, centred at (40, 20))"
-        ),
-        "{}",
-        w[0]
-    );
-    assert!(check(&p, true).is_empty());
-    // As one tower's size (9 thicknesses across) it is no warning.
-    p.edges = vec![wall(0, 1, 10..24), wall(1, 2, 23..38)];
-    assert!(check(&p, false).is_empty());
-}
-
-#[test]
 fn a_scale_bar_not_found_warns_with_the_way_out() {
     let p = plan(4, [10, 10, 60, 40]);
     let note = ScaleNote::BarNotFound {
         metres: 30.0,
         assumed: "1 m = 2 px".into(),
     };
-    let w = plan_warnings(&p, "plan.png", &note, Units::Pixels, 1.0, false);
+    let w = plan_warnings(&p, "plan.png", &note, Units::Pixels, 1.0);
     assert_eq!(
         w,
         vec![Warning::ScaleBarNotFound {
