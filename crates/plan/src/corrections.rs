@@ -179,8 +179,8 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
     }
     if changed || !fixes.merges.is_empty() {
         repaint_walls(plan);
-        plan.towers = crate::tower_groups::groups(&plan.edges, plan.vertices.len()).len()
-            + plan.bulge_towers.len();
+        plan.towers =
+            crate::tower_groups::count(&plan.edges, plan.vertices.len(), plan.bulge_towers.len());
     }
     Ok(notes)
 }

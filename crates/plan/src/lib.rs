@@ -548,7 +548,7 @@ fn parse_grey(
     }
     bulges::drop_nested(&mut bulge_towers);
     laps.lap("thick towers");
-    let towers = tower_groups::groups(&edges, g.vertices.len()).len() + bulge_towers.len();
+    let towers = tower_groups::count(&edges, g.vertices.len(), bulge_towers.len());
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {
         warnings.push("no towers found on the outer wall".into());
     }

@@ -38,6 +38,13 @@ pub fn groups(edges: &[PlanEdge], vertices: usize) -> Vec<Vec<usize>> {
     out
 }
 
+/// The plan's towers: one per group of tower-wall edges, plus the `pixel_towers` found on the
+/// pixels (bulges, rings, thick ink; `ParsedPlan::bulge_towers`). One home for the parse and
+/// the corrections.
+pub(crate) fn count(edges: &[PlanEdge], vertices: usize, pixel_towers: usize) -> usize {
+    groups(edges, vertices).len() + pixel_towers
+}
+
 /// A group of tower-wall edges longer than [`LONG_TOWER_WALL`] thicknesses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LongGroup {
@@ -96,7 +103,7 @@ pub(crate) fn warning(edges: &[PlanEdge], vertices: usize) -> Option<String> {
 mod tests {
     use super::*;
 
-    /// A straight edge from `a` to `b` (pixels along x), vertices `from` and `to`.
+    /// A straight edge between vertices `from` and `to`: the pixels `xs` of row `y`, 5 px thick.
     fn edge(from: usize, to: usize, label: Label, y: u32, xs: std::ops::Range<u32>) -> PlanEdge {
         PlanEdge {
             from,
@@ -122,8 +129,8 @@ mod tests {
 
     #[test]
     fn only_a_group_over_ten_thicknesses_across_is_warned_about() {
-        // Walls 5 px thick: a group 20 px across (4 thicknesses) and one 60 + 1 px across
-        // (12.2 thicknesses: 0..61 along x, box side 60).
+        // Walls 5 px thick: a group 20 px across (4 thicknesses) and one whose box runs from
+        // x = 100 to 160 (60 px, 12 thicknesses), centred at (130, 42).
         let edges = vec![
             edge(0, 1, Label::TowerWall, 10, 0..21),
             edge(2, 3, Label::TowerWall, 40, 100..131),
