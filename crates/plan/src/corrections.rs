@@ -181,6 +181,7 @@ pub fn apply(plan: &mut ParsedPlan, fixes: PlanFixes) -> Result<Vec<String>, Fix
         repaint_walls(plan);
         plan.towers =
             crate::tower_groups::count(&plan.edges, plan.vertices.len(), plan.bulge_towers.len());
+        crate::tower_groups::rewarn(plan);
     }
     Ok(notes)
 }

@@ -550,7 +550,7 @@ fn parse_grey(
     laps.lap("thick towers");
     let towers = tower_groups::count(&edges, g.vertices.len(), bulge_towers.len());
     if towers == 0 && faces.iter().any(|f| f.label == Label::Courtyard) {
-        warnings.push("no towers found on the outer wall".into());
+        warnings.push(tower_groups::NO_TOWERS.into());
     }
     laps.lap("count towers");
     Ok(ParsedPlan {

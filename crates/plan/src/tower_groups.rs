@@ -6,7 +6,7 @@
 //! the edge count overstates the towers (docs/plan.md, development set).
 
 use crate::label::Label;
-use crate::parsed::PlanEdge;
+use crate::parsed::{ParsedPlan, PlanEdge};
 
 /// A group of tower-wall edges whose extent (the longer side of its skeleton's box) is more
 /// than this many times its wall's thickness is warned about ([`long_groups`]): a drawn tower
@@ -84,6 +84,12 @@ pub fn long_groups(edges: &[PlanEdge], vertices: usize) -> Vec<LongGroup> {
         .collect()
 }
 
+/// How the warning for [`long_groups`] begins: what finds it again among a plan's warnings.
+const LONG_WARNING: &str = "tower walls too long to be one tower";
+
+/// The parse's warning when a castle with a courtyard shows no tower.
+pub(crate) const NO_TOWERS: &str = "no towers found on the outer wall";
+
 /// The warning for [`long_groups`], if any: where they are, and what the user can do.
 pub(crate) fn warning(edges: &[PlanEdge], vertices: usize) -> Option<String> {
     let long = long_groups(edges, vertices);
@@ -91,12 +97,23 @@ pub(crate) fn warning(edges: &[PlanEdge], vertices: usize) -> Option<String> {
         .iter()
         .max_by(|a, b| a.thicknesses.total_cmp(&b.thicknesses))?;
     Some(format!(
-        "tower walls too long to be one tower: {} group(s) of tower-wall edges, the longest {:.0} wall thicknesses across, centred at ({:.0}, {:.0}); likely a stretch of curving curtain read as one tower, so the towers along it are miscounted — check the tower walls in the labels overlay and correct the towers (`castellan serve`'s plan step, or [[tower]] in PROJECT.toml)",
+        "{LONG_WARNING}: {} group(s) of tower-wall edges, the longest {:.0} wall thicknesses across, centred at ({:.0}, {:.0}); likely a stretch of curving curtain read as one tower, so the towers along it are miscounted — check the tower walls in the labels overlay and correct the towers (`castellan serve`'s plan step, or [[tower]] in PROJECT.toml)",
         long.len(),
         longest.thicknesses,
         longest.centre[0],
         longest.centre[1],
     ))
+}
+
+/// The plan's tower warnings after the user's corrections changed its walls or towers: the
+/// parse's warning about tower walls too long is said again only if its groups still are
+/// (with their figures now), and "no towers" goes once the plan has a tower. The parse's
+/// warnings otherwise stand: they describe the drawing, not the labels.
+pub(crate) fn rewarn(plan: &mut ParsedPlan) {
+    plan.warnings
+        .retain(|w| !w.starts_with(LONG_WARNING) && !(plan.towers > 0 && w == NO_TOWERS));
+    plan.warnings
+        .extend(warning(&plan.edges, plan.vertices.len()));
 }
 
 #[cfg(test)]

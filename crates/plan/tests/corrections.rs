@@ -366,3 +366,66 @@ fn a_label_on_the_ink_beside_a_labelled_region_goes_across_the_wall() {
     assert_eq!(p.label_at(340, 60), Label::Chapel);
     assert_eq!(p.faces[east].label, Label::GreatHall);
 }
+
+/// The parse's tower warnings follow the corrections: "no towers" goes with the tower the user
+/// adds, and the warning about tower walls too long comes and goes with the walls the user
+/// labels.
+#[test]
+fn tower_warnings_are_said_again_after_the_corrections() {
+    let no_towers = "no towers found on the outer wall";
+    let long = "tower walls too long to be one tower";
+    let says = |p: &plan::ParsedPlan, what: &str| p.warnings.iter().any(|w| w.starts_with(what));
+    // The castle without its corner room: no tower (the disc is pruned as a stub).
+    let mut bare = castle();
+    for (x, y, px) in bare.enumerate_pixels_mut() {
+        let room = (300..=308).contains(&x) && (29..=100).contains(&y)
+            || (300..=371).contains(&x) && (92..=100).contains(&y);
+        if room {
+            *px = Luma([255]);
+        }
+    }
+    let opts = plan::Options {
+        upsample_below: 0,
+        ink: plan::ink::InkMethod::Rules,
+        ..Default::default()
+    };
+    let mut p = plan::parse(&DynamicImage::ImageLuma8(bare), &opts).unwrap();
+    assert_eq!(p.towers, 0);
+    assert!(says(&p, no_towers), "{:?}", p.warnings);
+    let tower = [TowerFix {
+        point: [211.0, 151.0],
+        radius: None,
+        remove: false,
+    }];
+    let fixes = PlanFixes {
+        towers: &tower,
+        ..Default::default()
+    };
+    apply(&mut p, fixes).unwrap();
+    assert_eq!(p.towers, 1);
+    assert!(!says(&p, no_towers), "{:?}", p.warnings);
+
+    // The whole south curtain (360 px, 8 thick) labelled tower wall is one long tower.
+    let mut p = parsed();
+    assert!(!says(&p, long), "{:?}", p.warnings);
+    let south = |label| {
+        [LabelFix {
+            point: [120.0, 276.0],
+            label,
+        }]
+    };
+    let as_tower = south(Label::TowerWall);
+    let fixes = PlanFixes {
+        labels: &as_tower,
+        ..Default::default()
+    };
+    apply(&mut p, fixes).unwrap();
+    assert!(says(&p, long), "{:?}", p.warnings);
+    let as_curtain = south(Label::CastleOuterWall);
+    let fixes = PlanFixes {
+        labels: &as_curtain,
+        ..Default::default()
+    };
+    apply(&mut p, fixes).unwrap();
+    assert!(!says(&p, long), "{:?}", p.warnings);
+}
