@@ -110,8 +110,9 @@ pub(crate) fn warning(edges: &[PlanEdge], vertices: usize) -> Option<String> {
 /// (with their figures now), and "no towers" goes once the plan has a tower. The parse's
 /// warnings otherwise stand: they describe the drawing, not the labels.
 pub(crate) fn rewarn(plan: &mut ParsedPlan) {
-    plan.warnings
-        .retain(|w| !w.starts_with(LONG_WARNING) && !(plan.towers > 0 && w == NO_TOWERS));
+    let has_towers = plan.towers > 0;
+    let stale = |w: &String| w.starts_with(LONG_WARNING) || (has_towers && w == NO_TOWERS);
+    plan.warnings.retain(|w| !stale(w));
     plan.warnings
         .extend(warning(&plan.edges, plan.vertices.len()));
 }
