@@ -288,7 +288,7 @@ fn row(name: &str, kind: &str, s: &Score, secs: f64) -> String {
 /// `--training`), `--hatching` when asked; `--without-issue-23` starts from
 /// [`GothicParams::without_issue_23`](facade::gothic::GothicParams::without_issue_23) (the
 /// estimator before the enclosing-arch grid, repetition and slivers) for a same-run comparison.
-fn castellan_params(
+pub fn castellan_params(
     hatching: bool,
     before_issue_23: bool,
     verify: bool,

@@ -60,6 +60,7 @@ pub mod repeat;
 pub mod score;
 pub mod sliver;
 pub mod synth;
+pub mod synth_engraving;
 pub mod synth_lancet;
 pub mod verify;
 pub mod watershed;
