@@ -3,7 +3,7 @@
 //! `data/gothic_devset` (none of which it sees in training).
 //!
 //! ```text
-//! cargo run --release -p facade --example openings_net -- [--seed 1] [--sheets 60] [--steps 600] [--out FILE] [--evaluate FILE] [--maps DIR] [--with-estimator]
+//! cargo run --release -p facade --example openings_net -- [--seed 1] [--sheets 60] [--steps 600] [--out FILE] [--evaluate FILE] [--maps DIR] [--with-estimator] [--check] [--fit]
 //! ```
 //!
 //! The network is the plan stage's U-Net (`plan::ink::net`, 53 k weights, about 250 px of
@@ -16,10 +16,14 @@
 //! one written before instead of training, `--maps DIR` writes each image's P(opening) as a
 //! grey PNG. `--with-estimator` also runs the estimator (`castellan gothic`'s defaults without
 //! the learned check, which was trained on these images) and scores it alone and together with
-//! the blobs that overlap none of its elements (IoU ≤ 0.5). Needs
+//! the blobs that overlap none of its elements (IoU ≤ 0.5). `--check` trains a check of the
+//! blobs on more synthetic sheets (`check.rs`) and scores the blobs it keeps; `--fit` takes the
+//! network's P > 0.5 as the window map of the class-driven mode
+//! (`gothic::classes::estimate_from_map`) and scores the elements fitted there. Needs
 //! `../shared/data/castle_drawings_pd` for the measurement.
 
-#[path = "gothic_devset.rs"]
+mod check;
+#[path = "../gothic_devset.rs"]
 #[allow(dead_code)]
 mod devset;
 
@@ -27,11 +31,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use devset::{ImageKind, Predicted, Score, score};
+use facade::gothic::classes::{ClassMapParams, WindowMap, estimate_from_map};
 use facade::gothic::synth_engraving::generate;
 use plan::ink::net::WallNet;
 use plan::ink::net_train::{NetParams, train_net};
 use plan::ink::train::Sheet;
-use raster::components::{Connectivity, components_where};
 
 /// Thresholds of P(opening) the table reports.
 const THRESHOLDS: [f32; 3] = [0.3, 0.5, 0.7];
@@ -45,11 +49,19 @@ fn main() {
     let (mut seed, mut sheets, mut steps) = (1u64, 60u64, 600usize);
     let (mut out, mut evaluate, mut maps): (Option<PathBuf>, Option<PathBuf>, Option<PathBuf>) =
         (None, None, None);
-    let mut with_estimator = false;
+    let (mut with_estimator, mut with_check, mut with_fit) = (false, false, false);
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         if a == "--with-estimator" {
             with_estimator = true;
+            continue;
+        }
+        if a == "--check" {
+            with_check = true;
+            continue;
+        }
+        if a == "--fit" {
+            with_fit = true;
             continue;
         }
         let v = args.next().unwrap_or_else(|| fail(&a, "needs a value"));
@@ -62,7 +74,7 @@ fn main() {
             "--maps" => maps = Some(v.into()),
             _ => fail(
                 &a,
-                "unknown (--seed, --sheets, --steps, --out, --evaluate, --maps, --with-estimator)",
+                "unknown (--seed, --sheets, --steps, --out, --evaluate, --maps, --with-estimator, --check, --fit)",
             ),
         }
     }
@@ -105,6 +117,7 @@ fn main() {
             net
         }
     };
+    let forest = with_check.then(|| train_check(&net, seed, sheets));
     let root = devset::images_root();
     if !root.is_dir() {
         eprintln!("skipped: {} not found", root.display());
@@ -117,6 +130,12 @@ fn main() {
     // The estimator alone, and with the blobs at each threshold (engravings, photos).
     let mut estimator = [Score::default(); 2];
     let mut union = [[Score::default(); 2]; THRESHOLDS.len()];
+    // The checked blobs of P > 0.5 at each check threshold, alone and with the estimator.
+    let mut checked = [[Score::default(); 2]; THRESHOLDS.len()];
+    let mut checked_union = [[Score::default(); 2]; THRESHOLDS.len()];
+    // Elements fitted on the network's map (the class-driven mode's estimator), alone and with
+    // the estimator's.
+    let (mut fitted, mut fitted_union) = ([Score::default(); 2], [Score::default(); 2]);
     let params = devset::castellan_params(false, false, false);
     for a in &annotated {
         let path = root.join(&a.file);
@@ -145,18 +164,53 @@ fn main() {
             found
         });
         let mut line = format!("{:66}", a.file);
+        let with_found = |b: Vec<Predicted>| {
+            let mut both = found.clone().unwrap_or_default();
+            let fresh: Vec<Predicted> = b
+                .into_iter()
+                .filter(|x| both.iter().all(|f| devset::iou(f.bbox, x.bbox) <= 0.5))
+                .collect();
+            both.extend(fresh);
+            score(&a.elements, &both)
+        };
         for (k, &t) in THRESHOLDS.iter().enumerate() {
-            let b = blobs(&p, w as usize, h as usize, t);
+            let b = boxes(&check::blobs(&p, w as usize, h as usize, t));
             let s = score(&a.elements, &b);
             line += &format!(" | P>{t}: {} of {}, {} boxes", s.matched, s.gt, s.pred);
             totals[k][kind].add(&s);
-            if let Some(found) = &found {
-                let mut both = found.clone();
-                both.extend(
-                    b.into_iter()
-                        .filter(|x| found.iter().all(|f| devset::iou(f.bbox, x.bbox) <= 0.5)),
-                );
-                union[k][kind].add(&score(&a.elements, &both));
+            if found.is_some() {
+                union[k][kind].add(&with_found(b));
+            }
+        }
+        if with_fit {
+            let rgb = image::open(&path)
+                .unwrap_or_else(|e| fail(&path.display().to_string(), e))
+                .to_rgb8();
+            let map = WindowMap {
+                width: w as usize,
+                height: h as usize,
+                window: p.iter().map(|&v| v > 0.5).collect(),
+            };
+            let est = estimate_from_map(&rgb, &map, &params, &ClassMapParams::default());
+            let elements = devset::predicted(&est);
+            fitted[kind].add(&score(&a.elements, &elements));
+            fitted_union[kind].add(&with_found(elements));
+        }
+        if let Some(forest) = &forest {
+            let b = check::blobs(&p, w as usize, h as usize, 0.5);
+            let scores: Vec<f32> = check::features(&grey, &p, &b)
+                .iter()
+                .map(|f| forest.predict_one(f)[1])
+                .collect();
+            for (k, &tau) in THRESHOLDS.iter().enumerate() {
+                let kept: Vec<check::Blob> = b
+                    .iter()
+                    .zip(&scores)
+                    .filter(|(_, s)| **s >= tau)
+                    .map(|(b, _)| *b)
+                    .collect();
+                checked[k][kind].add(&score(&a.elements, &boxes(&kept)));
+                checked_union[k][kind].add(&with_found(boxes(&kept)));
             }
         }
         println!("{line}");
@@ -176,6 +230,54 @@ fn main() {
             );
         }
     }
+    if with_fit {
+        rows("elements fitted on the map of P > 0.5", &fitted);
+        if with_estimator {
+            rows(
+                "the estimator and the elements fitted on the map",
+                &fitted_union,
+            );
+        }
+    }
+    if forest.is_some() {
+        for (k, tau) in THRESHOLDS.iter().enumerate() {
+            rows(&format!("blobs of P > 0.5, check ≥ {tau}"), &checked[k]);
+            if with_estimator {
+                rows(
+                    &format!("the estimator and the blobs of P > 0.5, check ≥ {tau}"),
+                    &checked_union[k],
+                );
+            }
+        }
+    }
+}
+
+/// The check of the blobs (`check`): trained on the blobs of P > 0.5 that `net` finds on
+/// `sheets` synthetic sheets of their own seeds, each labelled by whether its box meets one of
+/// its sheet's elements at IoU ≥ 0.5.
+fn train_check(net: &WallNet, seed: u64, sheets: u64) -> pixelclass::forest::Forest {
+    let (mut rows, mut labels) = (Vec::new(), Vec::new());
+    for s in 0..sheets {
+        let (w, h) = (400 + (s * 89 % 400) as u32, 400 + (s * 53 % 400) as u32);
+        let sheet = generate(seed.wrapping_mul(10_000).wrapping_add(5_000 + s), w, h);
+        let p = net.wall_probability(&sheet.image, w, h);
+        let b = check::blobs(&p, w as usize, h as usize, 0.5);
+        rows.extend(check::features(&sheet.image, &p, &b));
+        labels.extend(b.iter().map(|blob| {
+            usize::from(
+                sheet
+                    .elements
+                    .iter()
+                    .any(|e| devset::iou(e.bbox, blob.bbox) >= devset::IOU_MIN),
+            )
+        }));
+    }
+    let right = labels.iter().sum::<usize>();
+    eprintln!(
+        "check: {} blobs on {sheets} sheets, {right} right",
+        labels.len()
+    );
+    check::train(&rows, &labels, seed)
 }
 
 /// Three table rows: engravings, photos and all.
@@ -202,21 +304,13 @@ fn pct(v: Option<f64>, n: usize, of: usize) -> String {
     v.map_or("–".into(), |v| format!("{:.1} % ({n}/{of})", 100.0 * v))
 }
 
-/// The 4-connected blobs of `p > t` of at least 30 pixels and 5 × 7 px, as element boxes
-/// [x0, y0, x1, y1) with no parent.
-fn blobs(p: &[f32], w: usize, h: usize, t: f32) -> Vec<Predicted> {
-    let c = components_where(w, h, Connectivity::Four, |i| p[i] > t);
-    (1..c.sizes.len())
-        .filter(|&l| {
-            let b = c.bbox[l];
-            c.sizes[l] >= 30 && b[2] - b[0] >= 4 && b[3] - b[1] >= 6
-        })
-        .map(|l| {
-            let b = c.bbox[l].map(f64::from);
-            Predicted {
-                bbox: [b[0], b[1], b[2] + 1.0, b[3] + 1.0],
-                parent: None,
-            }
+/// Blobs as element boxes with no parent.
+fn boxes(blobs: &[check::Blob]) -> Vec<Predicted> {
+    blobs
+        .iter()
+        .map(|b| Predicted {
+            bbox: b.bbox,
+            parent: None,
         })
         .collect()
 }
