@@ -3,7 +3,7 @@
 //! `data/gothic_devset` (none of which it sees in training).
 //!
 //! ```text
-//! cargo run --release -p facade --example openings_net -- [--seed 1] [--sheets 60] [--steps 600] [--out FILE] [--evaluate FILE] [--maps DIR] [--with-estimator] [--check] [--fit]
+//! cargo run --release -p facade --example openings_net -- [--seed 1] [--sheets 60] [--steps 600] [--out FILE] [--evaluate FILE] [--maps DIR] [--with-estimator] [--check] [--fit] [--starts]
 //! ```
 //!
 //! The network is the plan stage's U-Net (`plan::ink::net`, 53 k weights, about 250 px of
@@ -19,7 +19,9 @@
 //! the blobs that overlap none of its elements (IoU ≤ 0.5). `--check` trains a check of the
 //! blobs on more synthetic sheets (`check.rs`) and scores the blobs it keeps; `--fit` takes the
 //! network's P > 0.5 as the window map of the class-driven mode
-//! (`gothic::classes::estimate_from_map`) and scores the elements fitted there. Needs
+//! (`gothic::classes::estimate_from_map`) and scores the elements fitted there; `--starts` runs
+//! the estimator with more first shapes, each blob's box with three heads, fitted and organised
+//! with its own (`gothic::detect::detect_from_starts`, `gothic::organise`). Needs
 //! `../shared/data/castle_drawings_pd` for the measurement.
 
 mod check;
@@ -33,6 +35,7 @@ use std::time::Instant;
 use devset::{ImageKind, Predicted, Score, score};
 use facade::gothic::classes::{ClassMapParams, WindowMap, estimate_from_map};
 use facade::gothic::synth_engraving::generate;
+use facade::gothic::{Theta, detect, detect_elements, organise};
 use plan::ink::net::WallNet;
 use plan::ink::net_train::{NetParams, train_net};
 use plan::ink::train::Sheet;
@@ -50,6 +53,7 @@ fn main() {
     let (mut out, mut evaluate, mut maps): (Option<PathBuf>, Option<PathBuf>, Option<PathBuf>) =
         (None, None, None);
     let (mut with_estimator, mut with_check, mut with_fit) = (false, false, false);
+    let mut with_starts = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         if a == "--with-estimator" {
@@ -64,6 +68,10 @@ fn main() {
             with_fit = true;
             continue;
         }
+        if a == "--starts" {
+            with_starts = true;
+            continue;
+        }
         let v = args.next().unwrap_or_else(|| fail(&a, "needs a value"));
         match a.as_str() {
             "--seed" => seed = v.parse().unwrap_or_else(|e| fail(&a, e)),
@@ -74,7 +82,7 @@ fn main() {
             "--maps" => maps = Some(v.into()),
             _ => fail(
                 &a,
-                "unknown (--seed, --sheets, --steps, --out, --evaluate, --maps, --with-estimator, --check, --fit)",
+                "unknown (--seed, --sheets, --steps, --out, --evaluate, --maps, --with-estimator, --check, --fit, --starts)",
             ),
         }
     }
@@ -136,6 +144,8 @@ fn main() {
     // Elements fitted on the network's map (the class-driven mode's estimator), alone and with
     // the estimator's.
     let (mut fitted, mut fitted_union) = ([Score::default(); 2], [Score::default(); 2]);
+    // The estimator with more first shapes, one set per blob of P > 0.5.
+    let mut started = [Score::default(); 2];
     let params = devset::castellan_params(false, false, false);
     for a in &annotated {
         let path = root.join(&a.file);
@@ -196,6 +206,18 @@ fn main() {
             fitted[kind].add(&score(&a.elements, &elements));
             fitted_union[kind].add(&with_found(elements));
         }
+        if with_starts {
+            let rgb = image::open(&path)
+                .unwrap_or_else(|e| fail(&path.display().to_string(), e))
+                .to_rgb8();
+            let detection = detect_elements(&rgb, &params, &|_| {})
+                .unwrap_or_else(|e| fail(&path.display().to_string(), e));
+            let starts = blob_starts(&check::blobs(&p, w as usize, h as usize, 0.5));
+            let mut found = detection.found;
+            found.extend(detect::detect_from_starts(&detection.dt, &starts, &params));
+            let est = organise(&detection.dt, found, &params);
+            started[kind].add(&score(&a.elements, &devset::predicted(&est)));
+        }
         if let Some(forest) = &forest {
             let b = check::blobs(&p, w as usize, h as usize, 0.5);
             let scores: Vec<f32> = check::features(&grey, &p, &b)
@@ -238,6 +260,12 @@ fn main() {
                 &fitted_union,
             );
         }
+    }
+    if with_starts {
+        rows(
+            "the estimator with starts from the blobs of P > 0.5",
+            &started,
+        );
     }
     if forest.is_some() {
         for (k, tau) in THRESHOLDS.iter().enumerate() {
@@ -302,6 +330,26 @@ fn row(what: &str, images: &str, s: &Score) {
 
 fn pct(v: Option<f64>, n: usize, of: usize) -> String {
     v.map_or("–".into(), |v| format!("{:.1} % ({n}/{of})", 100.0 * v))
+}
+
+/// First shapes from blobs: each blob's box with a flat, a round and a pointed head (the
+/// estimator's own starts are walked from seeds; `gothic::detect::starts_with`).
+fn blob_starts(blobs: &[check::Blob]) -> Vec<Theta> {
+    let mut out = Vec::new();
+    for b in blobs {
+        let [x0, top, x1, y0] = b.bbox;
+        let (w, tall) = (x1 - x0, y0 - top);
+        for v in [0.0, (w / 2.0).min(tall / 2.0), (0.85 * w).min(0.9 * tall)] {
+            out.push(Theta {
+                x0,
+                y0,
+                w,
+                h: tall - v,
+                v,
+            });
+        }
+    }
+    out
 }
 
 /// Blobs as element boxes with no parent.
