@@ -27,12 +27,17 @@ fn castle() -> GrayImage {
 }
 
 fn parsed() -> plan::ParsedPlan {
+    parse(castle())
+}
+
+/// `drawing` parsed as these tests parse: the rule chain, at its own size.
+fn parse(drawing: GrayImage) -> plan::ParsedPlan {
     let opts = plan::Options {
         upsample_below: 0,
         ink: plan::ink::InkMethod::Rules,
         ..Default::default()
     };
-    plan::parse(&DynamicImage::ImageLuma8(castle()), &opts).unwrap()
+    plan::parse(&DynamicImage::ImageLuma8(drawing), &opts).unwrap()
 }
 
 const ROOM: [f64; 2] = [340.0, 60.0];
@@ -384,12 +389,7 @@ fn tower_warnings_are_said_again_after_the_corrections() {
             *px = Luma([255]);
         }
     }
-    let opts = plan::Options {
-        upsample_below: 0,
-        ink: plan::ink::InkMethod::Rules,
-        ..Default::default()
-    };
-    let mut p = plan::parse(&DynamicImage::ImageLuma8(bare), &opts).unwrap();
+    let mut p = parse(bare);
     assert_eq!(p.towers, 0);
     assert!(says(&p, no_towers), "{:?}", p.warnings);
     let tower = [TowerFix {

@@ -1,20 +1,17 @@
 //! A check of the network's blobs, learned from synthetic sheets too (issue 23, session 39):
-//! each blob's size, shape, confidence, the drawing's tone and edges inside it and round it,
+//! each blob's size, shape, confidence, the drawing's tone and edges inside it and round it
+//! (`gothic::verify::Planes`, as the estimator's check reads them),
 //! and how many blobs of its size stand in its row or column (openings repeat); a forest
 //! trained on the blobs of synthetic sheets the network did not train on, labelled by their
 //! sheets' exact elements.
 
+use facade::gothic::verify::Planes;
 use image::GrayImage;
 use pixelclass::forest::{Forest, ForestParams};
 use raster::components::{Connectivity, components_where};
 
 /// Features of a blob.
 pub const DIM: usize = 16;
-
-/// A gradient magnitude (grey levels per 2 px) above this is an edge pixel.
-const EDGE: f32 = 40.0;
-/// A grey level (0–1) below this is dark ink.
-const DARK: f64 = 0.4;
 
 /// A blob of P(opening) > t: its box [x0, y0, x1, y1), pixel count, mean and largest P.
 #[derive(Debug, Clone, Copy)]
@@ -51,40 +48,10 @@ pub fn blobs(p: &[f32], w: usize, h: usize, t: f32) -> Vec<Blob> {
         .collect()
 }
 
-/// Mean grey (0–1), its deviation, dark and edge shares over the pixels of box `b` (clipped),
-/// and their count.
-fn stats(grey: &GrayImage, gradient: &[f32], b: [f64; 4]) -> [f64; 5] {
-    let (w, h) = (grey.width() as usize, grey.height() as usize);
-    let clip = |v: f64, hi: usize| (v.max(0.0) as usize).min(hi);
-    let (x0, y0, x1, y1) = (clip(b[0], w), clip(b[1], h), clip(b[2], w), clip(b[3], h));
-    let (mut s, mut s2, mut dark, mut edges, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for y in y0..y1 {
-        for x in x0..x1 {
-            let v = f64::from(grey.as_raw()[y * w + x]) / 255.0;
-            s += v;
-            s2 += v * v;
-            dark += f64::from(u8::from(v < DARK));
-            edges += f64::from(u8::from(gradient[y * w + x] > EDGE));
-            n += 1.0;
-        }
-    }
-    if n == 0.0 {
-        return [0.0; 5];
-    }
-    let m = s / n;
-    [m, (s2 / n - m * m).max(0.0).sqrt(), dark / n, edges / n, n]
-}
-
 /// The features of every blob of one drawing (`grey`, its P(opening) map `p`).
 pub fn features(grey: &GrayImage, p: &[f32], blobs: &[Blob]) -> Vec<[f32; DIM]> {
     let (w, h) = (grey.width() as usize, grey.height() as usize);
-    let g = |x: usize, y: usize| f32::from(grey.as_raw()[y * w + x]);
-    let mut gradient = vec![0f32; w * h];
-    for y in 1..h.saturating_sub(1) {
-        for x in 1..w.saturating_sub(1) {
-            gradient[y * w + x] = (g(x + 1, y) - g(x - 1, y)).hypot(g(x, y + 1) - g(x, y - 1));
-        }
-    }
+    let planes = Planes::of_grey(grey.clone());
     let mean_p = |b: [f64; 4]| {
         let clip = |v: f64, hi: usize| (v.max(0.0) as usize).min(hi);
         let (x0, y0, x1, y1) = (clip(b[0], w), clip(b[1], h), clip(b[2], w), clip(b[3], h));
@@ -103,15 +70,8 @@ pub fn features(grey: &GrayImage, p: &[f32], blobs: &[Blob]) -> Vec<[f32; DIM]> 
             let (bw, bh) = (b[2] - b[0], b[3] - b[1]);
             let (mx, my) = (0.25 * bw + 3.0, 0.25 * bh + 3.0);
             let outer_box = [b[0] - mx, b[1] - my, b[2] + mx, b[3] + my];
-            let (inside, outer) = (stats(grey, &gradient, b), stats(grey, &gradient, outer_box));
-            let ring = |i: usize| {
-                let extra = outer[4] - inside[4];
-                if extra > 0.0 {
-                    (outer[i] * outer[4] - inside[i] * inside[4]) / extra
-                } else {
-                    outer[i]
-                }
-            };
+            // `Planes::stats` order: mean, deviation, edge share, dark share.
+            let (inside, ring) = planes.inside_and_ring(b);
             let ((p_in, n_in), (p_out, n_out)) = (mean_p(b), mean_p(outer_box));
             let p_ring = if n_out > n_in {
                 (p_out * n_out - p_in * n_in) / (n_out - n_in)
@@ -139,11 +99,11 @@ pub fn features(grey: &GrayImage, p: &[f32], blobs: &[Blob]) -> Vec<[f32; DIM]> 
                 p_ring,
                 inside[0],
                 inside[1],
-                inside[2],
                 inside[3],
-                ring(0),
-                ring(2),
-                ring(3),
+                inside[2],
+                ring[0],
+                ring[3],
+                ring[2],
                 repeats as f64,
                 cy / ih,
             ]

@@ -56,20 +56,15 @@ fn main() {
     let mut with_starts = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
-        if a == "--with-estimator" {
-            with_estimator = true;
-            continue;
-        }
-        if a == "--check" {
-            with_check = true;
-            continue;
-        }
-        if a == "--fit" {
-            with_fit = true;
-            continue;
-        }
-        if a == "--starts" {
-            with_starts = true;
+        let switch = match a.as_str() {
+            "--with-estimator" => Some(&mut with_estimator),
+            "--check" => Some(&mut with_check),
+            "--fit" => Some(&mut with_fit),
+            "--starts" => Some(&mut with_starts),
+            _ => None,
+        };
+        if let Some(on) = switch {
+            *on = true;
             continue;
         }
         let v = args.next().unwrap_or_else(|| fail(&a, "needs a value"));
@@ -149,9 +144,8 @@ fn main() {
     let params = devset::castellan_params(false, false, false);
     for a in &annotated {
         let path = root.join(&a.file);
-        let grey = image::open(&path)
-            .unwrap_or_else(|e| fail(&path.display().to_string(), e))
-            .to_luma8();
+        let drawing = image::open(&path).unwrap_or_else(|e| fail(&path.display().to_string(), e));
+        let (grey, rgb) = (drawing.to_luma8(), drawing.to_rgb8());
         let (w, h) = grey.dimensions();
         let p = net.wall_probability(&grey, w, h);
         if let Some(dir) = &maps {
@@ -163,12 +157,14 @@ fn main() {
                 .unwrap_or_else(|e| fail(&name, e));
         }
         let kind = usize::from(a.kind == ImageKind::Photo);
-        let found = with_estimator.then(|| {
-            let rgb = image::open(&path)
+        // The estimator's detection (§4.2), made once for `--with-estimator` and `--starts`;
+        // organised with the check off, it is `gothic::estimate`'s estimate.
+        let detection = (with_estimator || with_starts).then(|| {
+            detect_elements(&rgb, &params, &|_| {})
                 .unwrap_or_else(|e| fail(&path.display().to_string(), e))
-                .to_rgb8();
-            let est = facade::gothic::estimate(&rgb, &params)
-                .unwrap_or_else(|e| fail(&path.display().to_string(), e));
+        });
+        let found = detection.as_ref().filter(|_| with_estimator).map(|d| {
+            let est = organise(&d.dt, d.found.clone(), &params);
             let found = devset::predicted(&est);
             estimator[kind].add(&score(&a.elements, &found));
             found
@@ -193,9 +189,6 @@ fn main() {
             }
         }
         if with_fit {
-            let rgb = image::open(&path)
-                .unwrap_or_else(|e| fail(&path.display().to_string(), e))
-                .to_rgb8();
             let map = WindowMap {
                 width: w as usize,
                 height: h as usize,
@@ -206,12 +199,7 @@ fn main() {
             fitted[kind].add(&score(&a.elements, &elements));
             fitted_union[kind].add(&with_found(elements));
         }
-        if with_starts {
-            let rgb = image::open(&path)
-                .unwrap_or_else(|e| fail(&path.display().to_string(), e))
-                .to_rgb8();
-            let detection = detect_elements(&rgb, &params, &|_| {})
-                .unwrap_or_else(|e| fail(&path.display().to_string(), e));
+        if let Some(detection) = detection.filter(|_| with_starts) {
             let starts = blob_starts(&check::blobs(&p, w as usize, h as usize, 0.5));
             let mut found = detection.found;
             found.extend(detect::detect_from_starts(&detection.dt, &starts, &params));

@@ -139,15 +139,19 @@ fn iou(a: [f64; 4], b: [f64; 4]) -> f64 {
     if u > 0.0 { i / u } else { 0.0 }
 }
 
-/// The grey image (0–255) and its gradient magnitude.
-struct Planes {
+/// The grey image (0–255) and its gradient magnitude: what the check's tone, darkness and edge
+/// statistics of a box are read from (also by `examples/openings_net`'s check of blobs).
+pub struct Planes {
     grey: GrayImage,
     gradient: Vec<f32>,
 }
 
 impl Planes {
-    fn of(img: &RgbImage) -> Planes {
-        let grey = image::imageops::grayscale(img);
+    pub fn of(img: &RgbImage) -> Planes {
+        Planes::of_grey(image::imageops::grayscale(img))
+    }
+
+    pub fn of_grey(grey: GrayImage) -> Planes {
         let (w, h) = (grey.width() as usize, grey.height() as usize);
         let g = |x: usize, y: usize| f32::from(grey.as_raw()[y * w + x]);
         let mut gradient = vec![0f32; w * h];
@@ -162,7 +166,7 @@ impl Planes {
 
     /// Over the pixels of box `b` (clipped): mean grey (0–1), its deviation, the share of edge
     /// pixels, the share of dark pixels, and the box's pixel count.
-    fn stats(&self, b: [f64; 4]) -> [f64; 5] {
+    pub fn stats(&self, b: [f64; 4]) -> [f64; 5] {
         let (w, h) = (self.grey.width() as usize, self.grey.height() as usize);
         let clip = |v: f64, hi: usize| (v.max(0.0) as usize).min(hi);
         let (x0, y0, x1, y1) = (clip(b[0], w), clip(b[1], h), clip(b[2], w), clip(b[3], h));
@@ -182,6 +186,24 @@ impl Planes {
         }
         let m = s / n;
         [m, (s2 / n - m * m).max(0.0).sqrt(), edges / n, dark / n, n]
+    }
+
+    /// [`Planes::stats`] of box `b`, and the mean of each of its first four statistics over a
+    /// ring round it a quarter of its size (+ 3 px) wide: the outer box's total less the box's.
+    pub fn inside_and_ring(&self, b: [f64; 4]) -> ([f64; 5], [f64; 4]) {
+        let (bw, bh) = (b[2] - b[0], b[3] - b[1]);
+        let inside = self.stats(b);
+        let (mx, my) = (0.25 * bw + 3.0, 0.25 * bh + 3.0);
+        let outer = self.stats([b[0] - mx, b[1] - my, b[2] + mx, b[3] + my]);
+        let extra = outer[4] - inside[4];
+        let ring = std::array::from_fn(|i| {
+            if extra > 0.0 {
+                (outer[i] * outer[4] - inside[i] * inside[4]) / extra
+            } else {
+                outer[i]
+            }
+        });
+        (inside, ring)
     }
 }
 
@@ -204,20 +226,7 @@ pub fn features(img: &RgbImage, est: &GothicEstimate) -> Vec<[f32; DIM]> {
         .map(|(k, e)| {
             let b = boxes[k];
             let (bw, bh) = (b[2] - b[0], b[3] - b[1]);
-            let inside = planes.stats(b);
-            let (mx, my) = (0.25 * bw + 3.0, 0.25 * bh + 3.0);
-            let outer = planes.stats([b[0] - mx, b[1] - my, b[2] + mx, b[3] + my]);
-            // The ring's mean of each statistic: the outer box's total less the inside's.
-            let ring: Vec<f64> = (0..4)
-                .map(|i| {
-                    let extra = outer[4] - inside[4];
-                    if extra > 0.0 {
-                        (outer[i] * outer[4] - inside[i] * inside[4]) / extra
-                    } else {
-                        outer[i]
-                    }
-                })
-                .collect();
+            let (inside, ring) = planes.inside_and_ring(b);
             let children = est
                 .elements
                 .iter()
